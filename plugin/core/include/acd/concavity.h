@@ -1,0 +1,26 @@
+// The paper's notch concavity (Section 6.1, Algorithm 6.1): the distance from a notch to the
+// bridge of the pocket that holds it, with notches assigned to bridges by surface shortest paths.
+#pragma once
+
+#include "acd/hull.h"
+#include "acd/topology.h"
+
+namespace acd {
+
+struct ConcavityReport
+{
+	std::vector<double> vertex_concavity;   // per mesh vertex, model units; 0 on the hull
+	std::vector<int>    vertex_bridge;      // hull facet a vertex's concavity was measured to, or -1
+	int    notches  = 0;     // reflex edges
+	int    bridges  = 0;     // hull facets not covered by the surface
+	int    pockets  = 0;     // connected regions of surface faces not on the hull
+	int    patches  = 0;     // pocket regions after the bridge-path partition
+	double max_concavity = 0;   // over notch vertices
+	int    max_vertex    = -1;  // the most concave notch vertex (-1: no notch)
+	int    max_bridge    = -1;  // hull facet it retracts to
+};
+
+// `m` must be a closed, edge-manifold, outward-oriented mesh (see make_solid) and `hull` its hull.
+ConcavityReport measure_concavity(const TriMesh& m, const Topology& topo, const ConvexHull& hull);
+
+} // namespace acd

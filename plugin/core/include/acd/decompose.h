@@ -1,0 +1,68 @@
+// Approx_CD (the paper's Algorithm 4.1): cut the most concave notch until every part's concavity is
+// at most tau. The result is the binary tree of cuts; its leaves are the parts.
+#pragma once
+
+#include "acd/concavity.h"
+#include "acd/separate.h"
+
+#include <functional>
+#include <string>
+
+namespace acd {
+
+enum class CutPlaneSelection
+{
+	Bisector,   // the paper: through the notch edge, bisecting its reflex dihedral angle
+	Best        // several planes through the notch (bisector, around its retraction direction,
+	            // parallel to its bridge), keeping the one whose parts are least concave
+};
+
+struct DecomposeOptions
+{
+	double            tau = 0;   // model units; > 0
+	CutPlaneSelection cut_plane_selection = CutPlaneSelection::Best;
+	int               max_parts = 0;          // 0 = unbounded
+	int               candidate_planes = 6;   // planes around the retraction direction (Best)
+	double            time_limit_seconds = 0; // 0 = none
+	// Called with a percentage and a short status; return false to cancel (throws Error(Cancelled)).
+	std::function<bool(int, const char*)> progress;
+};
+
+struct Node
+{
+	int         parent = -1;
+	int         child[2] = {-1, -1};
+	std::string path;              // "0" for the root, parent's path + '0'/'1' for children
+	double      concavity = 0;     // of this node's solid, the paper's measure
+	double      volume = 0;
+	int         notches = 0;
+	Vec3        notch = Vec3::Zero();   // most concave notch (meaningful if concavity > 0)
+	bool        has_plane = false;      // internal node: the cut
+	Plane       plane;
+	bool        uncut = false;     // leaf above tau because no plane split it (reported)
+	TriMesh     mesh;              // the node's solid
+	bool        leaf() const { return child[0] < 0; }
+};
+
+struct Decomposition
+{
+	std::vector<Node> nodes;        // nodes[0] is the root
+	double            tau = 0;
+	bool              max_parts_reached = false;
+	bool              time_limit_reached = false;
+	// Leaves in a stable order (by tree path).
+	std::vector<int> leaves() const;
+	double           max_leaf_concavity() const;
+	std::string      to_json() const;
+};
+
+Decomposition decompose(const Solid& solid, const DecomposeOptions& options);
+
+// Candidate cutting planes through the notch vertex `r` of mesh `m`, best guess first.
+std::vector<Plane> candidate_planes(const TriMesh& m, const Topology& topo, const ConvexHull& hull,
+                                    const ConcavityReport& rep, CutPlaneSelection sel, int around);
+
+// Rotation-invariant size used for percentages: the diameter of the smallest enclosing sphere.
+double enclosing_diameter(const std::vector<Vec3>& pts);
+
+} // namespace acd

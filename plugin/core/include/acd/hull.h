@@ -1,0 +1,43 @@
+// Convex hull of a point set, with coplanar hull triangles merged into facets (a cube's hull has 6
+// facets, not 12 triangles) and fast distance queries to its boundary.
+#pragma once
+
+#include "acd/mesh.h"
+
+#include <memory>
+
+namespace acd {
+
+class ConvexHull
+{
+public:
+	// Throws Error(InvalidInput) when the points span no volume.
+	explicit ConvexHull(const std::vector<Vec3>& points);
+	~ConvexHull();
+	ConvexHull(ConvexHull&&) noexcept;
+	ConvexHull& operator=(ConvexHull&&) noexcept;
+
+	// Hull vertices (positions, and their index in the input point array) and triangles.
+	std::vector<Vec3> points;
+	std::vector<int>  point_source;
+	std::vector<Tri>  triangles;       // outward oriented, indices into `points`
+	std::vector<int>  triangle_facet;  // which facet each triangle belongs to
+	std::vector<std::vector<int>> facet_triangles;
+	std::vector<Plane>            facet_plane;   // outward unit normal
+	std::vector<double>           facet_area;
+	double                        volume = 0;
+
+	int facets() const { return (int) facet_plane.size(); }
+	// Distance from p to the hull's boundary, and the triangle that realises it.
+	double distance_to_boundary(const Vec3& p, int* triangle = nullptr) const;
+	// Distance from p to one facet (a planar convex polygon).
+	double distance_to_facet(const Vec3& p, int facet) const;
+	// Hull as a mesh (vertices = hull vertices).
+	TriMesh mesh() const;
+
+private:
+	struct Tree;
+	std::unique_ptr<Tree> tree_;
+};
+
+} // namespace acd

@@ -1,0 +1,32 @@
+// Face and vertex adjacency of a closed, edge-manifold triangle mesh.
+#pragma once
+
+#include "acd/mesh.h"
+
+namespace acd {
+
+struct Topology
+{
+	// neighbour[f][k]: the face across edge (F[f][k], F[f][(k+1)%3]); -1 if none.
+	std::vector<std::array<int, 3>> neighbour;
+	// CSR vertex -> neighbouring vertices.
+	std::vector<int> adj_start, adj;
+
+	explicit Topology(const TriMesh& m);
+	template <class Fn> void for_each_neighbour(int v, Fn fn) const
+	{
+		for (int i = adj_start[v]; i < adj_start[v + 1]; ++i) fn(adj[i]);
+	}
+};
+
+// Is the edge (F[f][k], F[f][k+1]) reflex, i.e. is its dihedral angle, measured inside the solid,
+// above 180 degrees? Uses the vertex opposite to the edge in the neighbouring face.
+bool is_reflex(const TriMesh& m, const Topology& t, int f, int k);
+
+inline long long edge_key(int a, int b)
+{
+	if (a > b) std::swap(a, b);
+	return (static_cast<long long>(a) << 32) | static_cast<unsigned>(b);
+}
+
+} // namespace acd

@@ -1,0 +1,290 @@
+#include "acd/decompose.h"
+
+#include <CGAL/Cartesian_d.h>
+#include <CGAL/Min_sphere_of_points_d_traits_3.h>
+#include <CGAL/Min_sphere_of_spheres_d.h>
+#include <CGAL/Simple_cartesian.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <queue>
+#include <sstream>
+
+namespace acd {
+
+double enclosing_diameter(const std::vector<Vec3>& pts)
+{
+	using K      = CGAL::Simple_cartesian<double>;
+	using Traits = CGAL::Min_sphere_of_points_d_traits_3<K, double>;
+	std::vector<K::Point_3> p;
+	p.reserve(pts.size());
+	for (const Vec3& v : pts) p.emplace_back(v.x(), v.y(), v.z());
+	CGAL::Min_sphere_of_spheres_d<Traits> ms(p.begin(), p.end());
+	return 2 * ms.radius();
+}
+
+namespace {
+
+struct Measured
+{
+	ConcavityReport rep;
+	double          volume = 0;
+};
+
+Measured measure(const TriMesh& m, Topology& topo_out, std::unique_ptr<ConvexHull>& hull_out)
+{
+	Measured r;
+	topo_out = Topology(m);
+	hull_out = std::make_unique<ConvexHull>(m.V);
+	r.rep    = measure_concavity(m, topo_out, *hull_out);
+	r.volume = signed_volume(m);
+	return r;
+}
+
+// A candidate cut's parts scored by the paper's measure itself (the same one the recursion uses).
+double part_concavity(const TriMesh& m)
+{
+	Topology   t(m);
+	ConvexHull h(m.V);
+	return measure_concavity(m, t, h).max_concavity;
+}
+
+Plane through(const Vec3& p, Vec3 n)
+{
+	Plane pl;
+	pl.n = n.normalized();
+	pl.d = pl.n.dot(p);
+	return pl;
+}
+
+} // namespace
+
+std::vector<Plane> candidate_planes(const TriMesh& m, const Topology& topo, const ConvexHull& hull,
+                                    const ConcavityReport& rep, CutPlaneSelection sel, int around)
+{
+	std::vector<Plane> out;
+	const int          r = rep.max_vertex;
+	if (r < 0) return out;
+	const Vec3& p = m.V[r];
+
+	// The notch's most reflex incident edge, and the bisector of its two faces' normals.
+	double best = -1;
+	Vec3   edge = Vec3::Zero(), bis = Vec3::Zero();
+	for (int f = 0; f < (int) m.F.size(); ++f) {
+		// Only faces around r matter; scanning is O(n) once per cut.
+		int k = -1;
+		for (int j = 0; j < 3; ++j)
+			if (m.F[f][j] == r) k = j;
+		if (k < 0) continue;
+		for (int e : {k, (k + 2) % 3}) {   // the two edges of f at r
+			const int g = topo.neighbour[f][e];
+			if (g < f || !is_reflex(m, topo, f, e)) continue;
+			const Vec3 a = m.V[m.F[f][e]], b = m.V[m.F[f][(e + 1) % 3]];
+			auto normal = [&](int face) {
+				const Tri& t = m.F[face];
+				return (m.V[t[1]] - m.V[t[0]]).cross(m.V[t[2]] - m.V[t[0]]).normalized();
+			};
+			const Vec3   n1 = normal(f), n2 = normal(g);
+			const double excess = (n1.cross(n2)).norm() * (b - a).norm();   // sharper and longer first
+			if (excess > best) {
+				best = excess;
+				edge = (b - a).normalized();
+				bis  = n1 + n2;
+			}
+		}
+	}
+	if (best > 0 && bis.norm() > 1e-12) out.push_back(through(p, edge.cross(bis)));
+	if (sel == CutPlaneSelection::Bisector && !out.empty()) return out;
+
+	// Planes containing the retraction direction (the bridge's normal), at evenly spread angles
+	// starting from the notch edge's direction; and the plane parallel to the bridge.
+	if (rep.max_bridge >= 0) {
+		const Vec3 nb = hull.facet_plane[rep.max_bridge].n;
+		Vec3       u  = edge - nb * nb.dot(edge);
+		if (u.norm() < 1e-9) u = nb.unitOrthogonal();
+		u.normalize();
+		const Vec3 w = nb.cross(u);
+		for (int k = 0; k < around; ++k) {
+			const double th = M_PI * k / around;
+			out.push_back(through(p, std::cos(th) * u + std::sin(th) * w));
+		}
+		out.push_back(through(p, nb));
+	}
+	return out;
+}
+
+std::vector<int> Decomposition::leaves() const
+{
+	std::vector<int> l;
+	for (int i = 0; i < (int) nodes.size(); ++i)
+		if (nodes[i].leaf()) l.push_back(i);
+	std::sort(l.begin(), l.end(), [&](int a, int b) { return nodes[a].path < nodes[b].path; });
+	return l;
+}
+
+double Decomposition::max_leaf_concavity() const
+{
+	double c = 0;
+	for (int i : leaves()) c = std::max(c, nodes[i].concavity);
+	return c;
+}
+
+std::string Decomposition::to_json() const
+{
+	std::ostringstream o;
+	o.precision(17);
+	o << "{\"tau\":" << tau << ",\"max_parts_reached\":" << (max_parts_reached ? "true" : "false")
+	  << ",\"nodes\":[";
+	for (size_t i = 0; i < nodes.size(); ++i) {
+		const Node& n = nodes[i];
+		o << (i ? "," : "") << "{\"id\":" << i << ",\"path\":\"" << n.path << "\",\"parent\":" << n.parent
+		  << ",\"children\":[" << n.child[0] << "," << n.child[1] << "]"
+		  << ",\"concavity\":" << n.concavity << ",\"volume\":" << n.volume << ",\"notches\":" << n.notches
+		  << ",\"leaf\":" << (n.leaf() ? "true" : "false") << ",\"uncut\":" << (n.uncut ? "true" : "false");
+		if (n.concavity > 0)
+			o << ",\"notch\":[" << n.notch.x() << "," << n.notch.y() << "," << n.notch.z() << "]";
+		if (n.has_plane)
+			o << ",\"plane\":{\"normal\":[" << n.plane.n.x() << "," << n.plane.n.y() << "," << n.plane.n.z()
+			  << "],\"offset\":" << n.plane.d << "}";
+		o << "}";
+	}
+	o << "]}";
+	return o.str();
+}
+
+Decomposition decompose(const Solid& solid, const DecomposeOptions& opt)
+{
+	if (!(opt.tau > 0) || !std::isfinite(opt.tau))
+		throw Error(Error::InvalidOption, "tau must be a positive, finite length.");
+	if (opt.max_parts < 0) throw Error(Error::InvalidOption, "max_parts must be 0 (unbounded) or positive.");
+	const auto start = std::chrono::steady_clock::now();
+
+	Decomposition D;
+	D.tau = opt.tau;
+
+	auto make_node = [&](TriMesh mesh, int parent, const std::string& path) {
+		Node n;
+		n.parent = parent;
+		n.path   = path;
+		Topology                    topo(mesh);
+		std::unique_ptr<ConvexHull> hull;
+		Measured                    ms = measure(mesh, topo, hull);
+		n.concavity = ms.rep.max_concavity;
+		n.volume    = ms.volume;
+		n.notches   = ms.rep.notches;
+		if (ms.rep.max_vertex >= 0) n.notch = mesh.V[ms.rep.max_vertex];
+		n.mesh = std::move(mesh);
+		D.nodes.push_back(std::move(n));
+		return (int) D.nodes.size() - 1;
+	};
+
+	make_node(solid.mesh, -1, "0");
+	const double c0 = std::max(D.nodes[0].concavity, opt.tau);
+
+	// Open nodes, most concave first (ties by path), so a max_parts bound cuts the worst notches.
+	auto worse = [&](int a, int b) {
+		if (D.nodes[a].concavity != D.nodes[b].concavity) return D.nodes[a].concavity < D.nodes[b].concavity;
+		return D.nodes[a].path > D.nodes[b].path;
+	};
+	std::priority_queue<int, std::vector<int>, decltype(worse)> open(worse);
+	open.push(0);
+	int parts = 1;
+	while (!open.empty()) {
+		const int id = open.top();
+		if (D.nodes[id].concavity <= opt.tau) break;   // every open node is within tau
+		if (opt.max_parts > 0 && parts >= opt.max_parts) {
+			D.max_parts_reached = true;
+			break;
+		}
+		if (opt.time_limit_seconds > 0 &&
+		    std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() > opt.time_limit_seconds) {
+			D.time_limit_reached = true;
+			break;
+		}
+		open.pop();
+		// A cut that keeps failing to lower the concavity must not recurse forever.
+		if (D.nodes[id].path.size() > 96) {
+			D.nodes[id].uncut = true;
+			continue;
+		}
+		if (opt.progress) {
+			const double cur = D.nodes[id].concavity;
+			int pct = (int) (100 * std::log(c0 / cur) / std::max(1e-12, std::log(c0 / opt.tau)));
+			char msg[96];
+			std::snprintf(msg, sizeof msg, "Decomposing: %d parts, worst concavity %.4g", parts, cur);
+			if (!opt.progress(std::clamp(pct, 0, 99), msg))
+				throw Error(Error::Cancelled, "The decomposition was cancelled.");
+		}
+
+		// Re-measure to get the notch's data (topology, hull and report are not kept per node).
+		const TriMesh&              mesh = D.nodes[id].mesh;
+		Topology                    topo(mesh);
+		std::unique_ptr<ConvexHull> hull;
+		Measured                    ms = measure(mesh, topo, hull);
+		std::vector<Plane> planes = candidate_planes(mesh, topo, *hull, ms.rep, opt.cut_plane_selection,
+		                                             opt.candidate_planes);
+		if (opt.cut_plane_selection == CutPlaneSelection::Bisector && planes.size() == 1) {
+			// Fall back to the other candidates only if the bisector cannot split.
+			auto more = candidate_planes(mesh, topo, *hull, ms.rep, CutPlaneSelection::Best, opt.candidate_planes);
+			planes.insert(planes.end(), more.begin() + std::min<size_t>(1, more.size()), more.end());
+		}
+		const Vec3 notch = mesh.V[ms.rep.max_vertex];
+
+		SplitOutcome best;
+		double       best_score = std::numeric_limits<double>::infinity(), best_sum = 0;
+		bool         found = false;
+		for (const Plane& pl : planes) {
+			SplitOutcome so;
+			if (!separate(mesh, pl, notch, so)) continue;
+			// A plane that grazes the part shaves off a sliver and resolves nothing.
+			const double v0 = D.nodes[id].volume;
+			if (signed_volume(so.parts[0]) < 1e-5 * v0 || signed_volume(so.parts[1]) < 1e-5 * v0) continue;
+			if (opt.cut_plane_selection == CutPlaneSelection::Bisector) {
+				best  = std::move(so);
+				found = true;
+				break;
+			}
+			double a = 0, b = 0;
+			try {
+				a = part_concavity(so.parts[0]);
+				b = part_concavity(so.parts[1]);
+			}
+			catch (const Error&) {
+				continue;   // a sliver part with no volume
+			}
+			const double score = std::max(a, b), sum = a + b;
+			if (score < best_score || (score == best_score && sum < best_sum)) {
+				best_score = score;
+				best_sum   = sum;
+				best       = std::move(so);
+				found      = true;
+			}
+		}
+		if (!found) {
+			D.nodes[id].uncut = true;   // stays a leaf; reported
+			continue;
+		}
+		D.nodes[id].has_plane = true;
+		D.nodes[id].plane     = best.plane;
+		const std::string path = D.nodes[id].path;
+		for (int s = 0; s < 2; ++s) {
+			int c                   = make_node(std::move(best.parts[s]), id, path + char('0' + s));
+			D.nodes[id].child[s] = c;
+			open.push(c);
+		}
+		++parts;
+		if (std::getenv("ACD_DEBUG"))
+			std::fprintf(stderr, "cut %s conc %.4g notch (%.3f %.3f %.3f) n (%.3f %.3f %.3f) -> %.4g %.4g (faces %zu %zu)\n",
+			             path.c_str(), D.nodes[id].concavity, notch.x(), notch.y(), notch.z(), best.plane.n.x(),
+			             best.plane.n.y(), best.plane.n.z(), D.nodes[D.nodes[id].child[0]].concavity,
+			             D.nodes[D.nodes[id].child[1]].concavity, D.nodes[D.nodes[id].child[0]].mesh.F.size(),
+			             D.nodes[D.nodes[id].child[1]].mesh.F.size());
+	}
+	if (opt.progress) opt.progress(100, "Decomposition done");
+	return D;
+}
+
+} // namespace acd

@@ -1,0 +1,155 @@
+#include "acd/hull.h"
+
+#include <CGAL/AABB_traits_3.h>
+#include <CGAL/AABB_tree.h>
+#include <CGAL/AABB_triangle_primitive_3.h>
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Surface_mesh.h>
+#include <CGAL/convex_hull_3.h>
+
+#include <cstring>
+#include <numeric>
+#include <unordered_map>
+
+namespace acd {
+
+namespace {
+using K         = CGAL::Exact_predicates_inexact_constructions_kernel;
+using Point     = K::Point_3;
+using Triangle  = K::Triangle_3;
+using SMesh     = CGAL::Surface_mesh<Point>;
+using TriVec    = std::vector<Triangle>;
+using Primitive = CGAL::AABB_triangle_primitive_3<K, TriVec::const_iterator>;
+using AABB      = CGAL::AABB_tree<CGAL::AABB_traits_3<K, Primitive>>;
+
+Point to_cgal(const Vec3& p) { return Point(p.x(), p.y(), p.z()); }
+Vec3  to_vec(const Point& p) { return Vec3(p.x(), p.y(), p.z()); }
+
+struct BitsHash
+{
+	size_t operator()(const Point& p) const
+	{
+		const double c[3] = {p.x(), p.y(), p.z()};
+		size_t       h    = 1469598103934665603ull;
+		for (double x : c) {
+			unsigned long long b;
+			std::memcpy(&b, &x, 8);
+			h = (h ^ b) * 1099511628211ull;
+		}
+		return h;
+	}
+};
+
+int root(std::vector<int>& p, int x)
+{
+	while (p[x] != x) x = p[x] = p[p[x]];
+	return x;
+}
+} // namespace
+
+struct ConvexHull::Tree
+{
+	TriVec tris;
+	AABB   aabb;
+};
+
+ConvexHull::~ConvexHull()                                = default;
+ConvexHull::ConvexHull(ConvexHull&&) noexcept            = default;
+ConvexHull& ConvexHull::operator=(ConvexHull&&) noexcept = default;
+
+ConvexHull::ConvexHull(const std::vector<Vec3>& input)
+{
+	std::vector<Point> pts;
+	pts.reserve(input.size());
+	std::unordered_map<Point, int, BitsHash> index;   // first input index of each distinct point
+	index.reserve(input.size());
+	for (int i = 0; i < (int) input.size(); ++i) {
+		pts.push_back(to_cgal(input[i]));
+		index.emplace(pts.back(), i);
+	}
+	if (index.size() < 4) throw Error(Error::InvalidInput, "Fewer than 4 distinct points: no volume.");
+
+	SMesh sm;
+	CGAL::convex_hull_3(pts.begin(), pts.end(), sm);
+	if (sm.number_of_faces() < 4 || !CGAL::is_triangle_mesh(sm))
+		throw Error(Error::InvalidInput, "The points are coplanar: the shape encloses no volume.");
+
+	std::unordered_map<SMesh::Vertex_index, int> vid;
+	for (auto v : sm.vertices()) {
+		vid[v] = (int) points.size();
+		points.push_back(to_vec(sm.point(v)));
+		point_source.push_back(index.at(sm.point(v)));
+	}
+	std::unordered_map<SMesh::Face_index, int> fid;
+	for (auto f : sm.faces()) {
+		Tri t;
+		int k = 0;
+		for (auto v : CGAL::vertices_around_face(sm.halfedge(f), sm)) t[k++] = vid[v];
+		fid[f] = (int) triangles.size();
+		triangles.push_back(t);
+	}
+
+	// Merge exactly coplanar neighbouring triangles into facets.
+	std::vector<int> parent(triangles.size());
+	std::iota(parent.begin(), parent.end(), 0);
+	for (auto e : sm.edges()) {
+		auto h = sm.halfedge(e), o = sm.opposite(h);
+		auto f = sm.face(h), g = sm.face(o);
+		const Point &p = sm.point(sm.source(h)), &q = sm.point(sm.target(h));
+		const Point &r = sm.point(sm.target(sm.next(h))), &s = sm.point(sm.target(sm.next(o)));
+		if (CGAL::coplanar(p, q, r, s)) parent[root(parent, fid[f])] = root(parent, fid[g]);
+	}
+	std::unordered_map<int, int> facet_id;
+	triangle_facet.resize(triangles.size());
+	for (int t = 0; t < (int) triangles.size(); ++t) {
+		auto [it, fresh] = facet_id.emplace(root(parent, t), (int) facet_id.size());
+		if (fresh) facet_triangles.emplace_back();
+		triangle_facet[t] = it->second;
+		facet_triangles[it->second].push_back(t);
+	}
+	facet_plane.resize(facet_triangles.size());
+	facet_area.assign(facet_triangles.size(), 0.0);
+	for (int f = 0; f < (int) facet_triangles.size(); ++f) {
+		Vec3 n = Vec3::Zero();   // area-weighted normal of the facet's triangles
+		Vec3 c = Vec3::Zero();
+		for (int t : facet_triangles[f]) {
+			const Vec3 &a = points[triangles[t][0]], &b = points[triangles[t][1]], &d = points[triangles[t][2]];
+			Vec3 tn = (b - a).cross(d - a);
+			n += tn;
+			c += a + b + d;
+			facet_area[f] += 0.5 * tn.norm();
+		}
+		c /= 3.0 * facet_triangles[f].size();
+		facet_plane[f].n = n.normalized();
+		facet_plane[f].d = facet_plane[f].n.dot(c);
+	}
+	for (const Tri& t : triangles) volume += points[t[0]].dot(points[t[1]].cross(points[t[2]])) / 6.0;
+
+	tree_ = std::make_unique<Tree>();
+	for (const Tri& t : triangles)
+		tree_->tris.emplace_back(to_cgal(points[t[0]]), to_cgal(points[t[1]]), to_cgal(points[t[2]]));
+	tree_->aabb.insert(tree_->tris.cbegin(), tree_->tris.cend());
+	tree_->aabb.accelerate_distance_queries();
+}
+
+double ConvexHull::distance_to_boundary(const Vec3& p, int* triangle) const
+{
+	auto hit = tree_->aabb.closest_point_and_primitive(to_cgal(p));
+	if (triangle) *triangle = (int) (hit.second - tree_->tris.cbegin());
+	return std::sqrt(CGAL::squared_distance(hit.first, to_cgal(p)));
+}
+
+double ConvexHull::distance_to_facet(const Vec3& p, int facet) const
+{
+	const Point q  = to_cgal(p);
+	double      d2 = std::numeric_limits<double>::infinity();
+	for (int t : facet_triangles[facet]) d2 = std::min(d2, CGAL::squared_distance(q, tree_->tris[t]));
+	return std::sqrt(d2);
+}
+
+TriMesh ConvexHull::mesh() const
+{
+	return TriMesh{points, triangles};
+}
+
+} // namespace acd

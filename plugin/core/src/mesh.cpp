@@ -1,0 +1,200 @@
+#include "acd/mesh.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <unordered_map>
+
+namespace acd {
+
+namespace {
+
+struct EdgeKey
+{
+	int a, b;
+	bool operator==(const EdgeKey& o) const { return a == o.a && b == o.b; }
+};
+struct EdgeHash
+{
+	size_t operator()(const EdgeKey& e) const
+	{
+		return std::hash<long long>()((static_cast<long long>(e.a) << 32) ^ static_cast<unsigned>(e.b));
+	}
+};
+
+[[noreturn]] void invalid(const std::string& msg) { throw Error(Error::InvalidInput, msg); }
+
+int find_root(std::vector<int>& p, int x)
+{
+	while (p[x] != x) x = p[x] = p[p[x]];
+	return x;
+}
+
+} // namespace
+
+double signed_volume(const TriMesh& m)
+{
+	double v = 0;
+	for (const Tri& t : m.F)
+		v += m.V[t[0]].dot(m.V[t[1]].cross(m.V[t[2]]));
+	return v / 6.0;
+}
+
+double bbox_diagonal(const std::vector<Vec3>& pts)
+{
+	if (pts.empty()) return 0;
+	Vec3 lo = pts[0], hi = pts[0];
+	for (const Vec3& p : pts) {
+		lo = lo.cwiseMin(p);
+		hi = hi.cwiseMax(p);
+	}
+	return (hi - lo).norm();
+}
+
+std::vector<int> face_components(const TriMesh& m, int* count)
+{
+	std::vector<int> parent(m.F.size());
+	std::iota(parent.begin(), parent.end(), 0);
+	std::unordered_map<EdgeKey, int, EdgeHash> first;
+	first.reserve(m.F.size() * 2);
+	for (int f = 0; f < (int) m.F.size(); ++f)
+		for (int k = 0; k < 3; ++k) {
+			int a = m.F[f][k], b = m.F[f][(k + 1) % 3];
+			auto [it, fresh] = first.emplace(EdgeKey{std::min(a, b), std::max(a, b)}, f);
+			if (!fresh) parent[find_root(parent, f)] = find_root(parent, it->second);
+		}
+	std::vector<int> comp(m.F.size(), -1);
+	std::unordered_map<int, int> ids;
+	for (int f = 0; f < (int) m.F.size(); ++f) {
+		auto [it, fresh] = ids.emplace(find_root(parent, f), (int) ids.size());
+		comp[f] = it->second;
+	}
+	if (count) *count = (int) ids.size();
+	return comp;
+}
+
+Solid make_solid(const TriMesh& in)
+{
+	if (in.V.empty()) invalid("The mesh is empty: it has no vertices.");
+	if (in.F.empty())
+		invalid("The mesh is a point cloud (" + std::to_string(in.V.size()) +
+		        " vertices, no faces). Reconstruct a closed surface first, e.g. with "
+		        "'Surface Reconstruction: Screened Poisson' or 'Alpha Wrap'.");
+	for (const Vec3& p : in.V)
+		if (!p.allFinite()) invalid("The mesh has vertices with NaN or infinite coordinates.");
+
+	Solid s;
+	// Compact: keep referenced vertices only.
+	std::vector<int> remap(in.V.size(), -1);
+	for (const Tri& t : in.F)
+		for (int k = 0; k < 3; ++k) {
+			if (t[k] < 0 || t[k] >= (int) in.V.size()) invalid("A face references a missing vertex.");
+			if (remap[t[k]] < 0) {
+				remap[t[k]] = (int) s.mesh.V.size();
+				s.mesh.V.push_back(in.V[t[k]]);
+				s.source_vertex.push_back(t[k]);
+			}
+		}
+	s.unreferenced_vertices = (int) (in.V.size() - s.mesh.V.size());
+
+	const double diag = bbox_diagonal(s.mesh.V);
+	if (!(diag > 0) || !std::isfinite(diag)) invalid("The mesh is degenerate: all its vertices coincide.");
+	// Coordinates so large that squared lengths overflow, or so small that they underflow.
+	if (diag > 1e150 || diag < 1e-150)
+		invalid("The mesh's size (bounding box diagonal " + std::to_string(diag) +
+		        ") is outside the range the decomposition can compute with; rescale it.");
+
+	int degenerate = 0, repeated = 0;
+	for (const Tri& t : in.F) {
+		Tri r{remap[t[0]], remap[t[1]], remap[t[2]]};
+		if (r[0] == r[1] || r[1] == r[2] || r[0] == r[2]) {
+			++repeated;
+			continue;
+		}
+		const Vec3 &a = s.mesh.V[r[0]], &b = s.mesh.V[r[1]], &c = s.mesh.V[r[2]];
+		if ((b - a).cross(c - a).squaredNorm() == 0) ++degenerate;
+		s.mesh.F.push_back(r);
+	}
+	if (repeated > 0)
+		invalid(std::to_string(repeated) + " faces repeat a vertex. Run 'Remove Duplicate Faces' and "
+		        "'Remove Zero Area Faces' (meshing_remove_null_faces) first.");
+	if (degenerate > 0)
+		invalid(std::to_string(degenerate) + " faces have zero area. Run 'Remove Zero Area Faces' "
+		        "(meshing_remove_null_faces) first.");
+
+	// Edge use: each undirected edge must be used by exactly two faces, once in each direction.
+	std::unordered_map<EdgeKey, int, EdgeHash> directed;
+	directed.reserve(s.mesh.F.size() * 3);
+	for (const Tri& t : s.mesh.F)
+		for (int k = 0; k < 3; ++k) ++directed[EdgeKey{t[k], t[(k + 1) % 3]}];
+	long boundary = 0, nonmanifold = 0, misoriented = 0;
+	for (const auto& [e, n] : directed) {
+		auto it = directed.find(EdgeKey{e.b, e.a});
+		int back = it == directed.end() ? 0 : it->second;
+		int total = n + back;
+		if (total == 1) ++boundary;
+		else if (total > 2) { if (e.a < e.b) ++nonmanifold; }
+		else if (n == 2) ++misoriented;   // both uses in the same direction
+	}
+	if (boundary > 0)
+		invalid("The mesh is open: it has " + std::to_string(boundary) +
+		        " boundary edges. The decomposition needs a closed (watertight) solid: close the holes "
+		        "with 'Close Holes' (meshing_close_holes) or wrap it with 'Alpha Wrap' (generate_alpha_wrap).");
+	if (nonmanifold > 0)
+		invalid("The mesh has " + std::to_string(nonmanifold) +
+		        " non-manifold edges (shared by more than two faces). Repair it with 'Repair non Manifold "
+		        "Edges' (meshing_repair_non_manifold_edges) or 'Alpha Wrap' (generate_alpha_wrap).");
+	if (misoriented > 0)
+		invalid("The mesh's faces are not consistently oriented (" + std::to_string(misoriented) +
+		        " edges are used twice in the same direction). Run 'Re-Orient all faces coherently' "
+		        "(meshing_re_orient_faces_coherently).");
+
+	// Split non-manifold vertices: walk each fan of corners around a vertex across its edges; a
+	// vertex reached by a second fan gets a copy of its own.
+	{
+		const std::vector<Tri> orig = s.mesh.F;
+		const int              nf   = (int) orig.size();
+		std::unordered_map<EdgeKey, int, EdgeHash> face_of;   // directed edge -> its face
+		face_of.reserve(nf * 3);
+		for (int f = 0; f < nf; ++f)
+			for (int k = 0; k < 3; ++k) face_of[EdgeKey{orig[f][k], orig[f][(k + 1) % 3]}] = f;
+		std::vector<char> seen(nf * 3, 0);
+		std::vector<char> has_fan(s.mesh.V.size(), 0);
+		for (int f = 0; f < nf; ++f)
+			for (int k = 0; k < 3; ++k) {
+				if (seen[f * 3 + k]) continue;
+				const int v      = orig[f][k];
+				int       target = v;
+				if (has_fan[v]) {
+					target = (int) s.mesh.V.size();
+					s.mesh.V.push_back(s.mesh.V[v]);
+					s.source_vertex.push_back(s.source_vertex[v]);
+					++s.split_vertices;
+				}
+				has_fan[v] = 1;
+				int cf = f, ck = k;
+				while (!seen[cf * 3 + ck]) {
+					seen[cf * 3 + ck] = 1;
+					s.mesh.F[cf][ck]  = target;
+					// this face holds the directed edge (prev -> v); the next face holds (v -> prev)
+					const int prev = orig[cf][(ck + 2) % 3];
+					auto      it   = face_of.find(EdgeKey{v, prev});
+					if (it == face_of.end()) break;
+					cf = it->second;
+					ck = 0;
+					while (orig[cf][ck] != v) ++ck;
+				}
+			}
+	}
+
+	face_components(s.mesh, &s.shells);
+	s.volume = signed_volume(s.mesh);
+	if (!(std::abs(s.volume) > 1e-12 * diag * diag * diag))
+		invalid("The mesh encloses no volume (it is flat or its shells cancel out).");
+	if (s.volume < 0)
+		invalid("The mesh is oriented inward (negative volume). Run 'Invert Faces Orientation' "
+		        "(meshing_invert_face_orientation) first.");
+	return s;
+}
+
+} // namespace acd

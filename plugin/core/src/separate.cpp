@@ -1,0 +1,339 @@
+#include "acd/separate.h"
+
+#include <CGAL/Constrained_Delaunay_triangulation_2.h>
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Triangulation_face_base_with_info_2.h>
+#include <CGAL/Triangulation_vertex_base_with_info_2.h>
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <unordered_map>
+
+namespace acd {
+
+namespace {
+
+using K    = CGAL::Exact_predicates_inexact_constructions_kernel;
+using Vb   = CGAL::Triangulation_vertex_base_with_info_2<int, K>;
+using Fbi  = CGAL::Triangulation_face_base_with_info_2<int, K>;
+using Fb   = CGAL::Constrained_triangulation_face_base_2<K, Fbi>;
+using Tds  = CGAL::Triangulation_data_structure_2<Vb, Fb>;
+using CDT  = CGAL::Constrained_Delaunay_triangulation_2<K, Tds, CGAL::No_constraint_intersection_tag>;
+using P2   = Eigen::Vector2d;
+
+struct Loop
+{
+	std::vector<int> pts;   // crossing-point ids in order
+	double           area = 0;
+	int              depth = 0, parent = -1;
+};
+
+double seg_dist(const P2& p, const P2& a, const P2& b)
+{
+	P2     ab = b - a;
+	double t  = ab.squaredNorm() > 0 ? std::clamp((p - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0) : 0.0;
+	return (a + t * ab - p).norm();
+}
+
+bool in_polygon(const P2& p, const std::vector<P2>& poly)
+{
+	bool in = false;
+	for (size_t i = 0, j = poly.size() - 1; i < poly.size(); j = i++) {
+		const P2 &a = poly[i], &b = poly[j];
+		if ((a.y() > p.y()) != (b.y() > p.y()) &&
+		    p.x() < (b.x() - a.x()) * (p.y() - a.y()) / (b.y() - a.y()) + a.x())
+			in = !in;
+	}
+	return in;
+}
+
+// Triangulate one region (outer loop + its direct holes); triangles are CCW in the plane's (u, w)
+// frame and index crossing points. False if the loops touch or cross numerically.
+bool triangulate_region(const std::vector<std::vector<P2>>& loops2d, const std::vector<Loop>& loops,
+                        const std::vector<int>& region, std::vector<Tri>& tris)
+{
+	CDT    cdt;
+	size_t expected = 0;
+	try {
+		for (int li : region) {
+			const Loop&             L = loops[li];
+			std::vector<CDT::Vertex_handle> vh;
+			for (size_t i = 0; i < L.pts.size(); ++i) {
+				auto v    = cdt.insert(K::Point_2(loops2d[li][i].x(), loops2d[li][i].y()));
+				v->info() = L.pts[i];
+				vh.push_back(v);
+			}
+			expected += L.pts.size();
+			for (size_t i = 0; i < vh.size(); ++i) cdt.insert_constraint(vh[i], vh[(i + 1) % vh.size()]);
+		}
+	}
+	catch (const std::exception&) {
+		return false;   // intersecting constraints
+	}
+	if (cdt.number_of_vertices() != expected) return false;   // two points merged
+	// Nesting level of each face: flood from the infinite face; crossing a constraint adds one.
+	for (auto f : cdt.all_face_handles()) f->info() = -1;
+	std::vector<std::pair<CDT::Face_handle, int>> seeds{{cdt.infinite_face(), 0}};
+	std::vector<CDT::Face_handle>                 stack;
+	for (size_t i = 0; i < seeds.size(); ++i) {
+		auto [seed, level] = seeds[i];
+		if (seed->info() != -1) continue;
+		seed->info() = level;
+		stack.assign(1, seed);
+		while (!stack.empty()) {
+			auto f = stack.back();
+			stack.pop_back();
+			for (int e = 0; e < 3; ++e) {
+				auto g = f->neighbor(e);
+				if (g->info() != -1) continue;
+				if (cdt.is_constrained(CDT::Edge(f, e))) seeds.emplace_back(g, level + 1);
+				else {
+					g->info() = level;
+					stack.push_back(g);
+				}
+			}
+		}
+	}
+	for (auto f : cdt.finite_face_handles())
+		if (f->info() % 2 == 1)
+			tris.push_back({f->vertex(0)->info(), f->vertex(1)->info(), f->vertex(2)->info()});
+	return !tris.empty();
+}
+
+bool separate_at(const TriMesh& m, const Plane& plane, const Vec3& notch, SplitOutcome& out)
+{
+	const int nv = (int) m.V.size(), nf = (int) m.F.size();
+	std::vector<double> s(nv);
+	for (int v = 0; v < nv; ++v) s[v] = plane.eval(m.V[v]);
+
+	// Crossing points, one per edge with ends on opposite sides.
+	std::unordered_map<long long, int> cross_id;
+	std::vector<Vec3>                  cross_pos;
+	std::vector<std::array<int, 2>>    cross_faces;   // the two faces holding the crossing edge
+	std::vector<std::array<int, 2>>    face_cross(nf, {-1, -1});
+	for (int f = 0; f < nf; ++f) {
+		const Tri& t = m.F[f];
+		int        n = 0;
+		for (int k = 0; k < 3; ++k) {
+			int a = t[k], b = t[(k + 1) % 3];
+			if ((s[a] > 0) == (s[b] > 0)) continue;
+			long long key      = (static_cast<long long>(std::min(a, b)) << 32) | std::max(a, b);
+			auto [it, fresh]   = cross_id.emplace(key, (int) cross_pos.size());
+			if (fresh) {
+				// Interpolate from the lower index so both faces get the bit-identical point.
+				int lo = std::min(a, b), hi = std::max(a, b);
+				double tt = s[lo] / (s[lo] - s[hi]);
+				cross_pos.push_back(m.V[lo] + tt * (m.V[hi] - m.V[lo]));
+				cross_faces.push_back({f, -1});
+			}
+			else cross_faces[it->second][1] = f;
+			if (n < 2) face_cross[f][n] = it->second;
+			++n;
+		}
+	}
+	if (cross_pos.empty()) return false;
+
+	// Chain crossing points into closed loops through the faces.
+	std::vector<int>  loop_of(cross_pos.size(), -1);
+	std::vector<Loop> loops;
+	for (int c0 = 0; c0 < (int) cross_pos.size(); ++c0) {
+		if (loop_of[c0] >= 0) continue;
+		Loop L;
+		int  c = c0, f = cross_faces[c0][0];
+		while (loop_of[c] < 0) {
+			loop_of[c] = (int) loops.size();
+			L.pts.push_back(c);
+			int nc = face_cross[f][0] == c ? face_cross[f][1] : face_cross[f][0];
+			if (nc < 0) return false;
+			f = cross_faces[nc][0] == f ? cross_faces[nc][1] : cross_faces[nc][0];
+			c = nc;
+			if (f < 0) return false;
+		}
+		if (c != c0 || L.pts.size() < 3) return false;
+		loops.push_back(std::move(L));
+	}
+
+	// Plane frame (u, w, n) right-handed; loops in 2D.
+	Vec3 u = plane.n.unitOrthogonal(), w = plane.n.cross(u);
+	std::vector<std::vector<P2>> l2(loops.size());
+	for (size_t i = 0; i < loops.size(); ++i) {
+		for (int c : loops[i].pts) l2[i].emplace_back(cross_pos[c].dot(u), cross_pos[c].dot(w));
+		double a = 0;
+		for (size_t j = 0, k = l2[i].size() - 1; j < l2[i].size(); k = j++)
+			a += l2[i][k].x() * l2[i][j].y() - l2[i][j].x() * l2[i][k].y();
+		loops[i].area = std::abs(a) / 2;
+	}
+	for (size_t i = 0; i < loops.size(); ++i)
+		for (size_t j = 0; j < loops.size(); ++j)
+			if (i != j && in_polygon(l2[i][0], l2[j])) {
+				++loops[i].depth;
+				if (loops[i].parent < 0 || loops[j].area < loops[loops[i].parent].area) loops[i].parent = (int) j;
+			}
+
+	// Regions: an even-depth loop with its direct children (holes).
+	std::vector<std::vector<int>> regions;
+	std::vector<int>              region_of(loops.size(), -1);
+	for (size_t i = 0; i < loops.size(); ++i)
+		if (loops[i].depth % 2 == 0) {
+			region_of[i] = (int) regions.size();
+			regions.push_back({(int) i});
+		}
+	for (size_t i = 0; i < loops.size(); ++i)
+		if (loops[i].depth % 2 == 1) {
+			if (loops[i].parent < 0 || region_of[loops[i].parent] < 0) return false;
+			region_of[i] = region_of[loops[i].parent];
+			regions[region_of[i]].push_back((int) i);
+		}
+
+	// Regions ordered by their distance to the notch; the first holds it.
+	const P2            r2(notch.dot(u), notch.dot(w));
+	std::vector<double> rdist(regions.size(), std::numeric_limits<double>::infinity());
+	for (size_t i = 0; i < loops.size(); ++i)
+		for (size_t j = 0, k = l2[i].size() - 1; j < l2[i].size(); k = j++)
+			rdist[region_of[i]] = std::min(rdist[region_of[i]], seg_dist(r2, l2[i][k], l2[i][j]));
+	std::vector<int> order(regions.size());
+	std::iota(order.begin(), order.end(), 0);
+	std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return rdist[a] < rdist[b]; });
+
+	std::vector<char> cut_loop(loops.size(), 0);
+	std::vector<Tri>  caps;   // CCW in (u, w): outward normal +n, i.e. the negative side's cap
+	for (size_t ri = 0; ri < order.size(); ++ri) {
+		const std::vector<int>& region = regions[order[ri]];
+		if (!triangulate_region(l2, loops, region, caps)) return false;
+		for (int li : region) cut_loop[li] = 1;
+		out.regions_cut = (int) ri + 1;
+
+		// Assemble: original vertices, then for each crossing point a negative-side and a
+		// positive-side copy (only those on cut loops are used).
+		TriMesh all;
+		all.V = m.V;
+		const int base = nv;
+		for (const Vec3& p : cross_pos) {
+			all.V.push_back(p);
+			all.V.push_back(p);
+		}
+		auto neg = [&](int c) { return base + 2 * c; };
+		auto pos = [&](int c) { return base + 2 * c + 1; };
+		for (int f = 0; f < nf; ++f) {
+			const Tri& t = m.F[f];
+			int        c = face_cross[f][0];
+			if (c < 0 || !cut_loop[loop_of[c]]) {
+				all.F.push_back(t);
+				continue;
+			}
+			// the lone vertex: the one whose side differs from the other two
+			int k = 0;
+			for (; k < 3; ++k)
+				if ((s[t[k]] > 0) != (s[t[(k + 1) % 3]] > 0) && (s[t[k]] > 0) != (s[t[(k + 2) % 3]] > 0)) break;
+			const int a = t[k], b = t[(k + 1) % 3], d = t[(k + 2) % 3];
+			const int cab = cross_id.at((static_cast<long long>(std::min(a, b)) << 32) | std::max(a, b));
+			const int cad = cross_id.at((static_cast<long long>(std::min(a, d)) << 32) | std::max(a, d));
+			const bool a_pos = s[a] > 0;
+			auto lone  = [&](int c2) { return a_pos ? pos(c2) : neg(c2); };
+			auto other = [&](int c2) { return a_pos ? neg(c2) : pos(c2); };
+			all.F.push_back({a, lone(cab), lone(cad)});
+			all.F.push_back({other(cab), b, d});
+			all.F.push_back({other(cab), d, other(cad)});
+		}
+		for (const Tri& t : caps) {
+			all.F.push_back({neg(t[0]), neg(t[1]), neg(t[2])});
+			all.F.push_back({pos(t[0]), pos(t[2]), pos(t[1])});
+		}
+
+		// Shells, then solids: each cavity (negative shell) joins the outer shell around it.
+		int              ncomp = 0;
+		std::vector<int> comp  = face_components(all, &ncomp);
+		std::vector<TriMesh> shells(ncomp);
+		std::vector<std::vector<int>> vmap(ncomp, std::vector<int>());
+		std::vector<int> remap(all.V.size(), -1), remap_comp(all.V.size(), -1);
+		for (int f = 0; f < (int) all.F.size(); ++f) {
+			TriMesh& sh = shells[comp[f]];
+			Tri      t;
+			for (int k = 0; k < 3; ++k) {
+				int v = all.F[f][k];
+				if (remap_comp[v] != comp[f]) {
+					remap_comp[v] = comp[f];
+					remap[v]      = (int) sh.V.size();
+					sh.V.push_back(all.V[v]);
+				}
+				t[k] = remap[v];
+			}
+			sh.F.push_back(t);
+		}
+		std::vector<int> outer, cavity;
+		for (int c = 0; c < ncomp; ++c) (signed_volume(shells[c]) > 0 ? outer : cavity).push_back(c);
+		if (outer.size() < 2) continue;   // still one solid (a handle): cut the next region too
+		if (outer.size() > 2) return false;
+		std::array<int, 2> side;
+		for (int i = 0; i < 2; ++i) {
+			double sum = 0;
+			for (const Vec3& p : shells[outer[i]].V) sum += plane.eval(p);
+			side[i] = sum > 0 ? 1 : 0;
+		}
+		if (side[0] == side[1]) return false;
+		for (int i = 0; i < 2; ++i) out.parts[side[i]] = shells[outer[i]];
+		for (int c : cavity) {
+			int host = -1;
+			for (int i = 0; i < 2; ++i)
+				if (inside(shells[outer[i]], shells[c].V[0])) host = side[i];
+			if (host < 0) return false;
+			TriMesh& h = out.parts[host];
+			int      o = (int) h.V.size();
+			h.V.insert(h.V.end(), shells[c].V.begin(), shells[c].V.end());
+			for (const Tri& t : shells[c].F) h.F.push_back({t[0] + o, t[1] + o, t[2] + o});
+		}
+		out.plane    = plane;
+		out.cap_area = 0;
+		for (const Tri& t : caps)
+			out.cap_area += 0.5 * (cross_pos[t[1]] - cross_pos[t[0]]).cross(cross_pos[t[2]] - cross_pos[t[0]]).norm();
+		return true;
+	}
+	return false;
+}
+
+} // namespace
+
+bool inside(const TriMesh& m, const Vec3& p)
+{
+	// A direction unlikely to graze edges of axis-aligned or symmetric meshes.
+	const Vec3 dir = Vec3(0.5773502691896258, 0.5773502691896257, 0.5773502691896259).normalized() +
+	                 Vec3(1e-3, -2e-3, 3e-3);
+	int hits = 0;
+	for (const Tri& t : m.F) {
+		const Vec3 &a = m.V[t[0]], &b = m.V[t[1]], &c = m.V[t[2]];
+		Vec3   e1 = b - a, e2 = c - a, h = dir.cross(e2);
+		double det = e1.dot(h);
+		if (std::abs(det) < 1e-300) continue;
+		Vec3   sv = p - a;
+		double uu = sv.dot(h) / det;
+		if (uu < 0 || uu > 1) continue;
+		Vec3   q  = sv.cross(e1);
+		double vv = dir.dot(q) / det;
+		if (vv < 0 || uu + vv > 1) continue;
+		if (e2.dot(q) / det > 0) ++hits;
+	}
+	return hits % 2 == 1;
+}
+
+bool separate(const TriMesh& m, const Plane& plane, const Vec3& notch, SplitOutcome& out)
+{
+	// Keep every vertex clearly off the plane (the paper's perturbation of vertices on the plane):
+	// slide the plane by tiny offsets until no vertex is within `gap` of it.
+	const double diag = bbox_diagonal(m.V);
+	const double gap  = 1e-9 * diag;
+	for (double off : {0.0, 1e-7, -1e-7, 3.1e-7, -3.1e-7, 1.3e-6, -1.3e-6}) {
+		Plane p = plane;
+		p.d += off * diag;
+		bool clear = true;
+		for (const Vec3& v : m.V)
+			if (std::abs(p.eval(v)) <= gap) {
+				clear = false;
+				break;
+			}
+		if (clear && separate_at(m, p, notch, out)) return true;
+	}
+	return false;
+}
+
+} // namespace acd

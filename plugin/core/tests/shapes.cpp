@@ -1,0 +1,139 @@
+#include "shapes.h"
+
+#include <cmath>
+#include <map>
+
+namespace shapes {
+
+TriMesh box(Vec3 lo, Vec3 hi)
+{
+	std::vector<Eigen::Vector2d> sq{{lo.x(), lo.y()}, {hi.x(), lo.y()}, {hi.x(), hi.y()}, {lo.x(), hi.y()}};
+	return extrude(sq, lo.z(), hi.z());
+}
+
+// Ear clipping of a simple CCW polygon (small test polygons only).
+static std::vector<std::array<int, 3>> ear_clip(const std::vector<Eigen::Vector2d>& p)
+{
+	std::vector<int>                 idx;
+	std::vector<std::array<int, 3>> out;
+	for (int i = 0; i < (int) p.size(); ++i) idx.push_back(i);
+	auto cross = [](Eigen::Vector2d a, Eigen::Vector2d b, Eigen::Vector2d c) {
+		return (b - a).x() * (c - a).y() - (b - a).y() * (c - a).x();
+	};
+	while (idx.size() > 3) {
+		bool clipped = false;
+		for (size_t i = 0; i < idx.size() && !clipped; ++i) {
+			int a = idx[(i + idx.size() - 1) % idx.size()], b = idx[i], c = idx[(i + 1) % idx.size()];
+			if (cross(p[a], p[b], p[c]) <= 0) continue;
+			bool empty = true;
+			for (int j : idx) {
+				if (j == a || j == b || j == c) continue;
+				if (cross(p[a], p[b], p[j]) >= 0 && cross(p[b], p[c], p[j]) >= 0 && cross(p[c], p[a], p[j]) >= 0)
+					empty = false;
+			}
+			if (!empty) continue;
+			out.push_back({a, b, c});
+			idx.erase(idx.begin() + i);
+			clipped = true;
+		}
+		if (!clipped) break;
+	}
+	if (idx.size() == 3) out.push_back({idx[0], idx[1], idx[2]});
+	return out;
+}
+
+TriMesh extrude(const std::vector<Eigen::Vector2d>& poly, double z0, double z1)
+{
+	TriMesh    m;
+	const int n = (int) poly.size();
+	for (auto& q : poly) m.V.emplace_back(q.x(), q.y(), z0);
+	for (auto& q : poly) m.V.emplace_back(q.x(), q.y(), z1);
+	for (auto t : ear_clip(poly)) {
+		m.F.push_back({t[0], t[2], t[1]});               // bottom faces down
+		m.F.push_back({t[0] + n, t[1] + n, t[2] + n});   // top faces up
+	}
+	for (int i = 0; i < n; ++i) {
+		int j = (i + 1) % n;
+		m.F.push_back({i, j, j + n});
+		m.F.push_back({i, j + n, i + n});
+	}
+	return m;
+}
+
+TriMesh sphere(int subdivisions, double radius)
+{
+	const double t = (1 + std::sqrt(5.0)) / 2;
+	TriMesh      m;
+	m.V = {{-1, t, 0}, {1, t, 0}, {-1, -t, 0}, {1, -t, 0}, {0, -1, t}, {0, 1, t},
+	       {0, -1, -t}, {0, 1, -t}, {t, 0, -1}, {t, 0, 1}, {-t, 0, -1}, {-t, 0, 1}};
+	m.F = {{0, 11, 5}, {0, 5, 1},  {0, 1, 7},   {0, 7, 10}, {0, 10, 11}, {1, 5, 9}, {5, 11, 4},
+	       {11, 10, 2}, {10, 7, 6}, {7, 1, 8},  {3, 9, 4},  {3, 4, 2},   {3, 2, 6}, {3, 6, 8},
+	       {3, 8, 9},  {4, 9, 5},  {2, 4, 11}, {6, 2, 10}, {8, 6, 7},   {9, 8, 1}};
+	for (int s = 0; s < subdivisions; ++s) {
+		std::map<std::pair<int, int>, int> mid;
+		auto midpoint = [&](int a, int b) {
+			auto key = std::make_pair(std::min(a, b), std::max(a, b));
+			auto it  = mid.find(key);
+			if (it != mid.end()) return it->second;
+			m.V.push_back((m.V[a] + m.V[b]) / 2);
+			return mid[key] = (int) m.V.size() - 1;
+		};
+		std::vector<acd::Tri> f2;
+		for (auto f : m.F) {
+			int a = midpoint(f[0], f[1]), b = midpoint(f[1], f[2]), c = midpoint(f[2], f[0]);
+			f2.push_back({f[0], a, c});
+			f2.push_back({f[1], b, a});
+			f2.push_back({f[2], c, b});
+			f2.push_back({a, b, c});
+		}
+		m.F = f2;
+	}
+	for (auto& v : m.V) v = v.normalized() * radius;
+	return m;
+}
+
+TriMesh torus(double R, double r, int nu, int nv)
+{
+	TriMesh m;
+	for (int i = 0; i < nu; ++i)
+		for (int j = 0; j < nv; ++j) {
+			double u = 2 * M_PI * i / nu, v = 2 * M_PI * j / nv;
+			m.V.emplace_back((R + r * std::cos(v)) * std::cos(u), (R + r * std::cos(v)) * std::sin(u),
+			                 r * std::sin(v));
+		}
+	for (int i = 0; i < nu; ++i)
+		for (int j = 0; j < nv; ++j) {
+			int a = i * nv + j, b = ((i + 1) % nu) * nv + j, c = ((i + 1) % nu) * nv + (j + 1) % nv,
+			    d = i * nv + (j + 1) % nv;
+			m.F.push_back({a, b, c});
+			m.F.push_back({a, c, d});
+		}
+	return m;
+}
+
+TriMesh merge(const TriMesh& a, const TriMesh& b)
+{
+	TriMesh m = a;
+	int     o = (int) a.V.size();
+	m.V.insert(m.V.end(), b.V.begin(), b.V.end());
+	for (auto f : b.F) m.F.push_back({f[0] + o, f[1] + o, f[2] + o});
+	return m;
+}
+
+TriMesh inverted(TriMesh m)
+{
+	for (auto& f : m.F) std::swap(f[1], f[2]);
+	return m;
+}
+
+std::vector<Eigen::Vector2d> l_shape() { return {{0, 0}, {2, 0}, {2, 1}, {1, 1}, {1, 2}, {0, 2}}; }
+std::vector<Eigen::Vector2d> u_shape()
+{
+	return {{0, 0}, {3, 0}, {3, 2}, {2, 2}, {2, 1}, {1, 1}, {1, 2}, {0, 2}};
+}
+std::vector<Eigen::Vector2d> plus_shape()
+{
+	return {{1, 0}, {2, 0}, {2, 1}, {3, 1}, {3, 2}, {2, 2}, {2, 3}, {1, 3}, {1, 2}, {0, 2}, {0, 1}, {1, 1}};
+}
+
+} // namespace shapes

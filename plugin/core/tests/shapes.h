@@ -1,0 +1,19 @@
+// Test solids built from their definition: boxes, extruded polygons, spheres, tori.
+#pragma once
+
+#include "acd/mesh.h"
+
+namespace shapes {
+using acd::TriMesh;
+using acd::Vec3;
+TriMesh box(Vec3 lo, Vec3 hi);
+// Prism over a simple counter-clockwise polygon in the xy plane, from z0 to z1.
+TriMesh extrude(const std::vector<Eigen::Vector2d>& poly, double z0, double z1);
+TriMesh sphere(int subdivisions, double radius);
+TriMesh torus(double R, double r, int nu, int nv);
+TriMesh merge(const TriMesh& a, const TriMesh& b);
+TriMesh inverted(TriMesh m);
+std::vector<Eigen::Vector2d> l_shape();   // (0,0)-(2,0)-(2,1)-(1,1)-(1,2)-(0,2)
+std::vector<Eigen::Vector2d> u_shape();
+std::vector<Eigen::Vector2d> plus_shape();
+} // namespace shapes

@@ -1,0 +1,63 @@
+#include "acd/concavity.h"
+#include "shapes.h"
+#include "testing.h"
+
+using namespace acd;
+
+static ConcavityReport measure(const TriMesh& in)
+{
+	Solid      s = make_solid(in);
+	Topology   t(s.mesh);
+	ConvexHull h(s.mesh.V);
+	return measure_concavity(s.mesh, t, h);
+}
+
+ACD_TEST(convex_shapes_have_no_notch)
+{
+	for (const TriMesh& m : {shapes::box({0, 0, 0}, {1, 2, 3}), shapes::sphere(3, 1.0)}) {
+		ConcavityReport r = measure(m);
+		CHECK(r.notches == 0);
+		CHECK(r.max_concavity == 0);
+		CHECK(r.bridges == 0);
+	}
+}
+
+ACD_TEST(l_shape_concavity_is_distance_to_its_bridge)
+{
+	ConcavityReport r = measure(shapes::extrude(shapes::l_shape(), 0, 0.5));
+	// The reflex corner (1,1) lies 1/sqrt(2) from the bridge x + y = 3.
+	CHECK_NEAR(r.max_concavity, 1 / std::sqrt(2.0), 1e-12);
+	CHECK(r.notches == 1);
+	// The diagonal facet, and the top and bottom facets that the L covers only in part.
+	CHECK(r.bridges == 3);
+}
+
+ACD_TEST(u_shape_concavity_is_its_depth)
+{
+	// The U's notch (1,1) and (2,1) lie 1 below the bridge y = 2.
+	ConcavityReport r = measure(shapes::extrude(shapes::u_shape(), 0, 1));
+	CHECK_NEAR(r.max_concavity, 1.0, 1e-12);
+	CHECK(r.notches == 2);
+}
+
+ACD_TEST(bad_input_is_refused_with_a_reason)
+{
+	TriMesh open = shapes::box({0, 0, 0}, {1, 1, 1});
+	open.F.pop_back();
+	auto refused = [](const TriMesh& m, const std::string& word) {
+		try {
+			make_solid(m);
+		}
+		catch (const Error& e) {
+			return e.kind == Error::InvalidInput && std::string(e.what()).find(word) != std::string::npos;
+		}
+		return false;
+	};
+	CHECK(refused(open, "boundary edges"));
+	CHECK(refused(TriMesh{}, "empty"));
+	CHECK(refused(TriMesh{{Vec3(0, 0, 0), Vec3(1, 0, 0)}, {}}, "point cloud"));
+	CHECK(refused(shapes::inverted(shapes::box({0, 0, 0}, {1, 1, 1})), "inward"));
+	TriMesh nan = shapes::box({0, 0, 0}, {1, 1, 1});
+	nan.V[0].x() = std::nan("");
+	CHECK(refused(nan, "NaN"));
+}
