@@ -37,7 +37,7 @@ CONF
 	# Refresh the private lists at most once a day.
 	if [ -z "$(find "$apt_dir/lists" -maxdepth 1 -name '*Sources*' -mtime -1 2>/dev/null | head -n1)" ]; then
 		echo "[fetch_deps] updating private apt lists for sid (system sources untouched)"
-		APT_CONFIG="$apt_conf" apt-get update -qq -o Debug::NoLocking=1 >/dev/null
+		APT_CONFIG="$apt_conf" apt-get update -qq -o Debug::NoLocking=1 -o APT::Sandbox::User=root >/dev/null
 	fi
 }
 
@@ -51,7 +51,7 @@ if ! sha_ok "$tarball" "$MESHLAB_SHA256"; then
 	echo "[fetch_deps] fetching $MESHLAB_TARBALL with apt-get source"
 	tmp="$(mktemp -d)"
 	# The .dsc / debian tarball may answer 404 while the orig tarball is served: judge by checksum.
-	(cd "$tmp" && APT_CONFIG="$apt_conf" apt-get source --download-only -qq \
+	(cd "$tmp" && APT_CONFIG="$apt_conf" apt-get source --download-only -qq -o APT::Sandbox::User=root \
 		"meshlab=$MESHLAB_DEB_VERSION" >/dev/null 2>&1) || true
 	[ -f "$tmp/$MESHLAB_TARBALL" ] && mv "$tmp/$MESHLAB_TARBALL" "$tarball"
 	rm -rf "$tmp"
@@ -84,7 +84,7 @@ if [ ! -f "$ACD_CGAL_ROOT/.extracted" ]; then
 		echo "[fetch_deps] sid serves no libcgal-dev $CGAL_DEB_VERSION; falling back to the system CGAL (5.5)"
 	else
 		tmp="$(mktemp -d)"
-		(cd "$tmp" && APT_CONFIG="$apt_conf" apt-get download -qq "libcgal-dev=$ver" >/dev/null)
+		(cd "$tmp" && APT_CONFIG="$apt_conf" apt-get download -qq -o APT::Sandbox::User=root "libcgal-dev=$ver" >/dev/null)
 		rm -rf "$ACD_CGAL_ROOT" && mkdir -p "$ACD_CGAL_ROOT"
 		dpkg -x "$tmp"/libcgal-dev_*.deb "$ACD_CGAL_ROOT"
 		rm -rf "$tmp"

@@ -6,6 +6,9 @@
 #include <CGAL/Simple_cartesian.h>
 
 #include <algorithm>
+#include <atomic>
+#include <mutex>
+#include <thread>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -50,6 +53,31 @@ double part_concavity(const TriMesh& m)
 	Topology   t(m);
 	ConvexHull h(m.V);
 	return measure_concavity(m, t, h).max_concavity;
+}
+
+// Runs fn(0..n-1) on the machine's cores; the first exception is rethrown after all finish.
+template <class Fn> void parallel_for(size_t n, Fn fn)
+{
+	const size_t             workers = std::max(1u, std::min<unsigned>(std::thread::hardware_concurrency(), (unsigned) n));
+	std::atomic<size_t>      next{0};
+	std::exception_ptr       error;
+	std::mutex               error_mutex;
+	std::vector<std::thread> pool;
+	auto                     work = [&] {
+        for (size_t i; (i = next++) < n;) {
+            try {
+                fn(i);
+            }
+            catch (...) {
+                std::lock_guard<std::mutex> lock(error_mutex);
+                if (!error) error = std::current_exception();
+            }
+        }
+	};
+	for (size_t w = 1; w < workers; ++w) pool.emplace_back(work);
+	work();
+	for (auto& t : pool) t.join();
+	if (error) std::rethrow_exception(error);
 }
 
 Plane through(const Vec3& p, Vec3 n)
@@ -233,34 +261,57 @@ Decomposition decompose(const Solid& solid, const DecomposeOptions& opt)
 		}
 		const Vec3 notch = mesh.V[ms.rep.max_vertex];
 
-		SplitOutcome best;
-		double       best_score = std::numeric_limits<double>::infinity(), best_sum = 0;
-		bool         found = false;
-		for (const Plane& pl : planes) {
+		// Split and score every candidate plane; candidates are independent, so use all cores.
+		struct Trial
+		{
 			SplitOutcome so;
-			if (!separate(mesh, pl, notch, so)) continue;
-			// A plane that grazes the part shaves off a sliver and resolves nothing.
-			const double v0 = D.nodes[id].volume;
-			if (signed_volume(so.parts[0]) < 1e-5 * v0 || signed_volume(so.parts[1]) < 1e-5 * v0) continue;
-			if (opt.cut_plane_selection == CutPlaneSelection::Bisector) {
-				best  = std::move(so);
-				found = true;
-				break;
+			bool         ok = false;
+			double       score = 0, sum = 0;
+		};
+		std::vector<Trial> trials(planes.size());
+		const double       v0 = D.nodes[id].volume;
+		auto               run_trial = [&](size_t i) {
+            Trial& t = trials[i];
+            if (!separate(mesh, planes[i], notch, t.so)) return;
+            // A plane that grazes the part shaves off a sliver and resolves nothing.
+            if (signed_volume(t.so.parts[0]) < 1e-5 * v0 || signed_volume(t.so.parts[1]) < 1e-5 * v0) return;
+            if (opt.cut_plane_selection == CutPlaneSelection::Bisector) {
+                t.ok = true;
+                return;
+            }
+            try {
+                const double a = part_concavity(t.so.parts[0]), b = part_concavity(t.so.parts[1]);
+                t.score = std::max(a, b);
+                t.sum   = a + b;
+                t.ok    = true;
+            }
+            catch (const Error&) {   // a part with no volume
+            }
+		};
+		if (opt.cut_plane_selection == CutPlaneSelection::Bisector) {
+			// The paper's plane first; the others only if it cannot split.
+			for (size_t i = 0; i < planes.size(); ++i) {
+				run_trial(i);
+				if (trials[i].ok) break;
 			}
-			double a = 0, b = 0;
-			try {
-				a = part_concavity(so.parts[0]);
-				b = part_concavity(so.parts[1]);
-			}
-			catch (const Error&) {
-				continue;   // a sliver part with no volume
-			}
-			const double score = std::max(a, b), sum = a + b;
-			if (score < best_score || (score == best_score && sum < best_sum)) {
-				best_score = score;
-				best_sum   = sum;
-				best       = std::move(so);
+		}
+		else parallel_for(planes.size(), run_trial);
+
+		SplitOutcome best;
+		bool         found = false;
+		double       best_score = 0, best_sum = 0;
+		// Scores within a hair (the planes are nudged off vertices by ~1e-7 of the size) are ties,
+		// settled by the total concavity, then by candidate order (the paper's bisector first).
+		const double hair = 1e-6 * bbox_diagonal(mesh.V);
+		for (Trial& t : trials) {
+			if (!t.ok) continue;
+			if (!found || t.score < best_score - hair ||
+			    (t.score <= best_score + hair && t.sum < best_sum - hair)) {
+				best_score = t.score;
+				best_sum   = t.sum;
+				best       = std::move(t.so);
 				found      = true;
+				if (opt.cut_plane_selection == CutPlaneSelection::Bisector) break;
 			}
 		}
 		if (!found) {

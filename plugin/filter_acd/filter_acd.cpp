@@ -1,0 +1,298 @@
+/****************************************************************************
+* meshlab-acd: approximate convex decomposition for MeshLab                  *
+* GPL-3.0-or-later, like MeshLab.                                            *
+****************************************************************************/
+// The plugin only adapts: it reads parameters, converts meshes, calls the core (acd::), adds
+// layers and turns every exception into MLException (the GUI catches nothing else).
+
+#include "filter_acd.h"
+#include "meshlab_convert.h"
+
+#include <acd/decompose.h>
+
+#include <vcg/complex/algorithms/update/color.h>
+
+#include <QFile>
+
+#include <chrono>
+
+namespace {
+
+const QStringList kCutPlaneLabels = {"best", "bisector"};
+const QStringList kTauUnitLabels  = {"percent_of_size", "model_units"};
+
+const char* kCitation =
+	"<br><br>Method: <i>Jyh-Ming Lien, Nancy M. Amato</i>, <b>\"Approximate Convex Decomposition of "
+	"Polyhedra\"</b>, ACM Symposium on Solid and Physical Modeling 2007 (Texas A&amp;M TR05-001).";
+
+// Runs `fn`, converting whatever the core or CGAL throws into MLException.
+template <class Fn> auto guarded(Fn fn) -> decltype(fn())
+{
+	try {
+		return fn();
+	}
+	catch (const MLException&) {
+		throw;
+	}
+	catch (const std::bad_alloc&) {
+		throw MLException("Out of memory during the convex decomposition.");
+	}
+	catch (const acd::Error& e) {
+		throw MLException(QString::fromStdString(e.what()));
+	}
+	catch (const std::exception& e) {
+		throw MLException(QString("Internal error in the convex decomposition: ") + e.what());
+	}
+	catch (...) {
+		throw MLException("Internal error in the convex decomposition (unknown exception).");
+	}
+}
+
+vcg::Color4b part_color(int i)
+{
+	// Golden-angle hues: neighbouring parts get clearly different colours.
+	float h = std::fmod(0.13f + 0.61803398875f * i, 1.0f);
+	vcg::Color4b c;
+	c.SetHSVColor(h, 0.65f, 0.95f);
+	return c;
+}
+
+} // namespace
+
+FilterACD::FilterACD()
+{
+	typeList = {NOTCH_CONCAVITY, CONVEX_DECOMPOSITION};
+	for (ActionIDType tt : types()) actionList.push_back(new QAction(filterName(tt), this));
+}
+
+QString FilterACD::pluginName() const { return "FilterACD"; }
+
+QString FilterACD::filterName(ActionIDType f) const
+{
+	switch (f) {
+	case NOTCH_CONCAVITY: return "Convex Decomposition: Notch Concavity";
+	case CONVEX_DECOMPOSITION: return "Convex Decomposition: Approximate Convex Decomposition";
+	default: assert(0); return QString();
+	}
+}
+
+QString FilterACD::pythonFilterName(ActionIDType f) const
+{
+	switch (f) {
+	case NOTCH_CONCAVITY: return "compute_scalar_by_notch_concavity";
+	case CONVEX_DECOMPOSITION: return "generate_approximate_convex_decomposition";
+	default: assert(0); return QString();
+	}
+}
+
+QString FilterACD::filterInfo(ActionIDType f) const
+{
+	switch (f) {
+	case NOTCH_CONCAVITY:
+		return QString("Measures how concave the mesh is at each notch (reflex edge), as the distance from the "
+		               "notch to the <i>bridge</i> (a convex-hull facet not on the surface) of the <i>pocket</i> "
+		               "that holds it; notches are assigned to bridges by shortest surface paths between the "
+		               "ends of each bridge edge. Stores the concavity (absolute model units) as vertex quality "
+		               "and colours it. The mesh must be closed and 2-manifold.") + kCitation;
+	case CONVEX_DECOMPOSITION:
+		return QString("Splits a closed 2-manifold mesh (any genus) into parts whose concavity is at most "
+		               "<i>tau</i>: the most concave notch is cut by a plane through it, splitting the part "
+		               "into exactly two closed parts, until every part is tau-convex. Each part becomes a new "
+		               "layer named by its path in the binary cut tree (acd_0, acd_00, acd_01, ...). The input "
+		               "layer is not modified. The whole tree is returned as JSON.") + kCitation;
+	default: assert(0); return QString();
+	}
+}
+
+FilterPlugin::FilterClass FilterACD::getClass(const QAction* a) const
+{
+	switch (ID(a)) {
+	case NOTCH_CONCAVITY: return FilterClass(Quality + Measure);
+	case CONVEX_DECOMPOSITION: return FilterClass(Remeshing + Layer);
+	default: assert(0); return Generic;
+	}
+}
+
+int FilterACD::getPreConditions(const QAction*) const { return MeshModel::MM_FACENUMBER; }
+
+int FilterACD::getRequirements(const QAction* a)
+{
+	return ID(a) == NOTCH_CONCAVITY ? MeshModel::MM_VERTQUALITY | MeshModel::MM_VERTCOLOR : MeshModel::MM_NONE;
+}
+
+int FilterACD::postCondition(const QAction* a) const
+{
+	// The decomposition only adds layers.
+	return ID(a) == NOTCH_CONCAVITY ? MeshModel::MM_VERTQUALITY | MeshModel::MM_VERTCOLOR : MeshModel::MM_NONE;
+}
+
+RichParameterList FilterACD::initParameterList(const QAction* a, const MeshModel& /*m*/)
+{
+	RichParameterList p;
+	if (ID(a) != CONVEX_DECOMPOSITION) return p;
+	p.addParam(RichFloat(
+		"tau", 2.0, "Concavity tolerance (tau)",
+		"Largest concavity a part may keep. With tau_unit = percent_of_size it is a percentage of the "
+		"diameter of the mesh's smallest enclosing sphere (a size that does not change when the mesh "
+		"is rotated); with model_units it is an absolute length."));
+	p.addParam(RichEnum(
+		"tau_unit", 0, kTauUnitLabels, "Unit of tau",
+		"percent_of_size: tau is a percentage of the enclosing-sphere diameter; model_units: tau is a "
+		"length in the mesh's units."));
+	p.addParam(RichEnum(
+		"cut_plane_selection", 0, kCutPlaneLabels, "Cutting plane",
+		"best: try several planes through the notch (the bisector, planes around its retraction "
+		"direction, the plane parallel to its bridge) and keep the one leaving the least concave parts; "
+		"bisector: the paper's plane through the notch edge bisecting its reflex angle (faster)."));
+	p.addParam(RichInt(
+		"max_parts", 0, "Maximum number of parts",
+		"Stop after this many parts (0 = no limit); the most concave notches are cut first, and the "
+		"result reports whether the limit was reached."));
+	p.addParam(RichBool(
+		"output_hulls", false, "Also add part hulls",
+		"Add the convex hull of each part as a layer too (named acd_hull_<path>)."));
+	p.addParam(RichInt(
+		"max_hull_vertices", 0, "Maximum hull vertices",
+		"With output_hulls: limit each hull to this many vertices (0 = no limit), as physics engines "
+		"require; extra vertices are dropped (the hull shrinks slightly)."));
+	p.addParam(RichFloat(
+		"time_limit", 0, "Time limit (s)",
+		"Stop cutting after this many seconds (0 = no limit) and return the parts found so far."));
+	p.addParam(RichString(
+		"tree_file", "", "Save tree as (JSON)",
+		"If set, the whole cut tree (nodes, parents, paths, planes, concavity, volume) is written to "
+		"this JSON file; layer names are the leaves' paths. Empty: not written.",
+		true));
+	return p;
+}
+
+std::map<std::string, QVariant> FilterACD::applyFilter(
+	const QAction*           action,
+	const RichParameterList& par,
+	MeshDocument&            md,
+	unsigned int& /*postConditionMask*/,
+	vcg::CallBackPos* cb)
+{
+	switch (ID(action)) {
+	case NOTCH_CONCAVITY: return guarded([&] { return notchConcavity(*md.mm(), cb); });
+	case CONVEX_DECOMPOSITION: return guarded([&] { return decompose(par, md, cb); });
+	default: wrongActionCalled(action);
+	}
+	return {};
+}
+
+std::map<std::string, QVariant> FilterACD::notchConcavity(MeshModel& mm, vcg::CallBackPos* cb)
+{
+	if (cb) cb(0, "Measuring notch concavity...");
+	acd::Solid      s = acd::make_solid(acdml::to_trimesh(mm.cm));
+	acd::Topology   topo(s.mesh);
+	acd::ConvexHull hull(s.mesh.V);
+	if (cb) cb(30, "Measuring notch concavity...");
+	acd::ConcavityReport r = acd::measure_concavity(s.mesh, topo, hull);
+
+	// Back to MeshLab's vertices: split copies of a non-manifold vertex keep the largest value.
+	mm.updateDataMask(MeshModel::MM_VERTQUALITY | MeshModel::MM_VERTCOLOR);
+	std::vector<int> live;
+	for (size_t i = 0; i < mm.cm.vert.size(); ++i)
+		if (!mm.cm.vert[i].IsD()) live.push_back((int) i);
+	for (int i : live) mm.cm.vert[i].Q() = 0;
+	for (size_t v = 0; v < s.mesh.V.size(); ++v) {
+		auto& q = mm.cm.vert[live[s.source_vertex[v]]].Q();
+		q       = std::max<Scalarm>(q, (Scalarm) r.vertex_concavity[v]);
+	}
+	vcg::tri::UpdateColor<CMeshO>::PerVertexQualityRamp(mm.cm);
+
+	const acd::Vec3 at = r.max_vertex >= 0 ? s.mesh.V[r.max_vertex] : acd::Vec3::Zero();
+	log("Notch concavity: %d notches, %d bridges, %d pockets; max concavity %g at (%g, %g, %g)",
+	    r.notches, r.bridges, r.pockets, r.max_concavity, at.x(), at.y(), at.z());
+	if (cb) cb(100, "Done");
+	return {
+		{"notches", r.notches},
+		{"bridges", r.bridges},
+		{"pockets", r.pockets},
+		{"patches", r.patches},
+		{"max_concavity", r.max_concavity},
+		{"max_concavity_position", QVariant::fromValue(Point3m(at.x(), at.y(), at.z()))},
+		{"max_concavity_x", at.x()},
+		{"max_concavity_y", at.y()},
+		{"max_concavity_z", at.z()},
+		{"has_notch", r.max_vertex >= 0},
+	};
+}
+
+std::map<std::string, QVariant>
+FilterACD::decompose(const RichParameterList& par, MeshDocument& md, vcg::CallBackPos* cb)
+{
+	const auto  t0    = std::chrono::steady_clock::now();
+	MeshModel&  input = *md.mm();
+	acd::Solid  s     = acd::make_solid(acdml::to_trimesh(input.cm));
+
+	const double size = acd::enclosing_diameter(s.mesh.V);
+	const double tau  = par.getFloat("tau");
+	if (!(tau > 0) || !std::isfinite(tau))
+		throw MLException(QString("tau must be positive (got %1).").arg(tau));
+	acd::DecomposeOptions o;
+	o.tau                 = par.getEnum("tau_unit") == 0 ? tau / 100.0 * size : tau;
+	o.cut_plane_selection = par.getEnum("cut_plane_selection") == 0 ? acd::CutPlaneSelection::Best
+	                                                                 : acd::CutPlaneSelection::Bisector;
+	o.max_parts           = par.getInt("max_parts");
+	o.time_limit_seconds  = par.getFloat("time_limit");
+	if (o.max_parts < 0) throw MLException("max_parts must be 0 (no limit) or positive.");
+	if (o.time_limit_seconds < 0) throw MLException("time_limit must be 0 (no limit) or positive.");
+	if (cb) o.progress = [cb](int pct, const char* msg) { return cb(pct, msg); };
+
+	acd::Decomposition d = acd::decompose(s, o);
+
+	const bool hulls     = par.getBool("output_hulls");
+	const int  max_hullv = par.getInt("max_hull_vertices");
+	int        idx       = 0;
+	for (int li : d.leaves()) {
+		const acd::Node& n = d.nodes[li];
+		MeshModel* part = md.addNewMesh("", QString("acd_%1").arg(QString::fromStdString(n.path)), false);
+		acdml::from_trimesh(n.mesh, part->cm);
+		part->cm.Tr = input.cm.Tr;
+		part->updateDataMask(MeshModel::MM_VERTCOLOR);
+		vcg::tri::UpdateColor<CMeshO>::PerVertexConstant(part->cm, part_color(idx));
+		part->updateBoxAndNormals();
+		if (hulls) {
+			acd::ConvexHull h(n.mesh.V);
+			acd::TriMesh    hm = h.mesh();
+			if (max_hullv > 3 && (int) hm.V.size() > max_hullv) hm = acd::simplify_hull(hm, max_hullv);
+			MeshModel* hull = md.addNewMesh("", QString("acd_hull_%1").arg(QString::fromStdString(n.path)), false);
+			acdml::from_trimesh(hm, hull->cm);
+			hull->cm.Tr = input.cm.Tr;
+			hull->updateDataMask(MeshModel::MM_VERTCOLOR);
+			vcg::tri::UpdateColor<CMeshO>::PerVertexConstant(hull->cm, part_color(idx));
+			hull->updateBoxAndNormals();
+		}
+		++idx;
+	}
+	const QString tree_file = par.getString("tree_file");
+	if (!tree_file.isEmpty()) {
+		QFile f(tree_file);
+		if (!f.open(QIODevice::WriteOnly | QIODevice::Truncate))
+			throw MLException("Cannot write the tree file " + tree_file);
+		f.write(QByteArray::fromStdString(d.to_json()));
+	}
+	const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+	const int    uncut = (int) std::count_if(d.nodes.begin(), d.nodes.end(), [](const acd::Node& n) { return n.uncut; });
+	log("Approximate convex decomposition: %d parts, tau %g (model units), max part concavity %g, %.2f s%s",
+	    idx, o.tau, d.max_leaf_concavity(), secs,
+	    d.max_parts_reached ? " (max_parts reached: some parts exceed tau)" : "");
+	if (uncut > 0) log("Warning: %d parts above tau could not be cut by any candidate plane", uncut);
+	return {
+		{"parts", idx},
+		{"tau", o.tau},
+		{"tau_model_units", o.tau},
+		{"size", size},
+		{"max_concavity", d.max_leaf_concavity()},
+		{"root_concavity", d.nodes[0].concavity},
+		{"time", secs},
+		{"max_parts_reached", d.max_parts_reached},
+		{"time_limit_reached", d.time_limit_reached},
+		{"uncut_parts", uncut},
+		{"tree_nodes", (int) d.nodes.size()},
+	};
+}
+
+MESHLAB_PLUGIN_NAME_EXPORTER(FilterACD)

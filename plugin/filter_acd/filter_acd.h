@@ -1,0 +1,44 @@
+/****************************************************************************
+* meshlab-acd: approximate convex decomposition for MeshLab                  *
+* GPL-3.0-or-later, like MeshLab.                                            *
+****************************************************************************/
+#ifndef FILTER_ACD_H
+#define FILTER_ACD_H
+
+#include <common/plugins/interfaces/filter_plugin.h>
+
+class FilterACD : public QObject, public FilterPlugin
+{
+	Q_OBJECT
+	MESHLAB_PLUGIN_IID_EXPORTER(FILTER_PLUGIN_IID)
+	Q_INTERFACES(FilterPlugin)
+
+public:
+	enum FilterIds { NOTCH_CONCAVITY, CONVEX_DECOMPOSITION };
+
+	FilterACD();
+
+	QString      pluginName() const;
+	QString      filterName(ActionIDType filter) const;
+	QString      pythonFilterName(ActionIDType f) const;
+	QString      filterInfo(ActionIDType filter) const;
+	FilterClass  getClass(const QAction* a) const;
+	FilterArity  filterArity(const QAction*) const { return SINGLE_MESH; }
+	int          getPreConditions(const QAction*) const;
+	int          getRequirements(const QAction* a);
+	int          postCondition(const QAction* a) const;
+	RichParameterList initParameterList(const QAction*, const MeshModel& m);
+	std::map<std::string, QVariant> applyFilter(
+		const QAction*           action,
+		const RichParameterList& params,
+		MeshDocument&            md,
+		unsigned int&            postConditionMask,
+		vcg::CallBackPos*        cb);
+
+private:
+	std::map<std::string, QVariant> notchConcavity(MeshModel& m, vcg::CallBackPos* cb);
+	std::map<std::string, QVariant>
+	decompose(const RichParameterList& par, MeshDocument& md, vcg::CallBackPos* cb);
+};
+
+#endif

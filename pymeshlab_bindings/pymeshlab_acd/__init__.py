@@ -1,0 +1,87 @@
+"""Approximate convex decomposition filters for pymeshlab.
+
+``import pymeshlab_acd`` loads the meshlab-acd plugin into pymeshlab (once per process) and binds its
+filters as ``pymeshlab.MeshSet`` methods::
+
+    import pymeshlab, pymeshlab_acd
+    ms = pymeshlab.MeshSet()
+    ms.load_new_mesh("bunny.obj")
+    ms.compute_scalar_by_notch_concavity()
+    ms.generate_approximate_convex_decomposition(tau=2.0)
+"""
+import json
+import os
+import pathlib
+
+import pymeshlab
+
+__all__ = ["FILTERS", "plugin_path", "load", "decompose", "mesh_ids"]
+
+# Python names of the plugin's filters (keep in sync with FilterACD::pythonFilterName).
+FILTERS = (
+    "compute_scalar_by_notch_concavity",
+    "generate_approximate_convex_decomposition",
+)
+
+_PLUGIN = "libfilter_acd.so"
+_loaded = None
+
+
+def plugin_path():
+    """Where the plugin is: $ACD_PLUGIN, the copy installed with this package, or a repo build."""
+    candidates = []
+    if os.environ.get("ACD_PLUGIN"):
+        candidates.append(pathlib.Path(os.environ["ACD_PLUGIN"]))
+    candidates.append(pathlib.Path(__file__).resolve().parent / "lib" / _PLUGIN)
+    cache = os.environ.get("ACD_CACHE") or os.path.join(
+        os.environ.get("XDG_CACHE_HOME", os.path.expanduser("~/.cache")), "meshlab-acd")
+    candidates.append(pathlib.Path(cache) / "build-double" / "filter_acd" / _PLUGIN)
+    for c in candidates:
+        if c.is_file():
+            return c
+    raise FileNotFoundError(
+        "meshlab-acd plugin not found (looked in: %s). Build it with scripts/build_plugin.sh or "
+        "pip install --no-build-isolation ./pymeshlab_bindings" % ", ".join(map(str, candidates)))
+
+
+def load():
+    """Load the plugin into pymeshlab and bind its filters; safe to call any number of times."""
+    global _loaded
+    if _loaded is None:
+        path = plugin_path()
+        if not all(name in pymeshlab.filter_list() for name in FILTERS):
+            pymeshlab.load_plugin(str(path))   # a second load of the same plugin raises
+        for name in FILTERS:
+            setattr(pymeshlab.MeshSet, name, pymeshlab.bind_function(name))
+        _loaded = path
+    return _loaded
+
+
+def mesh_ids(ms):
+    """Ids of the layers of a MeshSet, in creation order."""
+    ids, i = [], 0
+    while len(ids) < ms.mesh_number() and i < 1_000_000:
+        if ms.mesh_id_exists(i):
+            ids.append(i)
+        i += 1
+    return ids
+
+
+def decompose(ms, **params):
+    """Decompose the current mesh. Returns (result dict with the tree under "tree", part layer ids).
+
+    Parameters are the filter's (tau, tau_unit, cut_plane_selection, max_parts, output_hulls,
+    max_hull_vertices, time_limit). The tree is read from a temporary JSON file the filter writes.
+    """
+    import tempfile
+    before = set(mesh_ids(ms))
+    with tempfile.TemporaryDirectory() as tmp:
+        tree_file = os.path.join(tmp, "tree.json")
+        res = ms.generate_approximate_convex_decomposition(tree_file=tree_file, **params)
+        with open(tree_file) as f:
+            res["tree"] = json.load(f)
+    new = [i for i in mesh_ids(ms) if i not in before]
+    return res, new
+
+
+load()

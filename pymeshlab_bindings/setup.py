@@ -1,0 +1,34 @@
+"""Builds the MeshLab plugin (C++, see ../plugin) and ships it inside the package.
+
+The build links against the installed pymeshlab's libmeshlab-common, so install with
+`pip install --no-build-isolation ./pymeshlab_bindings` into an environment that has pymeshlab.
+"""
+import os
+import pathlib
+import shutil
+import subprocess
+
+from setuptools import setup
+from setuptools.command.build_py import build_py
+
+HERE = pathlib.Path(__file__).resolve().parent
+REPO = HERE.parent
+
+
+class BuildWithPlugin(build_py):
+    def run(self):
+        super().run()
+        script = REPO / "scripts" / "build_plugin.sh"
+        if not script.exists():
+            raise RuntimeError(f"{script} not found: install from a checkout of meshlab-acd")
+        env = dict(os.environ, ACD_SCALAR="double")
+        subprocess.check_call(["bash", str(script)], env=env)
+        cache = os.environ.get("ACD_CACHE") or os.path.join(
+            os.environ.get("XDG_CACHE_HOME", os.path.expanduser("~/.cache")), "meshlab-acd")
+        built = pathlib.Path(cache) / "build-double" / "filter_acd" / "libfilter_acd.so"
+        dest = pathlib.Path(self.build_lib) / "pymeshlab_acd" / "lib"
+        dest.mkdir(parents=True, exist_ok=True)
+        shutil.copy2(built, dest / built.name)
+
+
+setup(cmdclass={"build_py": BuildWithPlugin})
