@@ -297,23 +297,23 @@ Decomposition decompose(const Solid& solid, const DecomposeOptions& opt)
 		}
 		else parallel_for(planes.size(), run_trial);
 
-		SplitOutcome best;
-		bool         found = false;
-		double       best_score = 0, best_sum = 0;
-		// Scores within a hair (the planes are nudged off vertices by ~1e-7 of the size) are ties,
-		// settled by the total concavity, then by candidate order (the paper's bisector first).
+		// The paper's bisector plane (candidate 0) stands unless another leaves clearly (10%) less
+		// concavity: greedy scores alone would rather shave small arms off one by one. Among the
+		// others, scores within a hair (planes are nudged ~1e-7 of the size off vertices) are ties,
+		// settled by the total concavity.
 		const double hair = 1e-6 * bbox_diagonal(mesh.V);
-		for (Trial& t : trials) {
+		int          pick = -1;
+		for (int i = 0; i < (int) trials.size(); ++i) {
+			const Trial& t = trials[i];
 			if (!t.ok) continue;
-			if (!found || t.score < best_score - hair ||
-			    (t.score <= best_score + hair && t.sum < best_sum - hair)) {
-				best_score = t.score;
-				best_sum   = t.sum;
-				best       = std::move(t.so);
-				found      = true;
-				if (opt.cut_plane_selection == CutPlaneSelection::Bisector) break;
-			}
+			if (pick < 0 || t.score < trials[pick].score - hair ||
+			    (t.score <= trials[pick].score + hair && t.sum < trials[pick].sum - hair))
+				pick = i;
 		}
+		if (pick > 0 && trials[0].ok && !(trials[pick].score < 0.9 * trials[0].score)) pick = 0;
+		const bool   found = pick >= 0;
+		SplitOutcome best;
+		if (found) best = std::move(trials[pick].so);
 		if (!found) {
 			D.nodes[id].uncut = true;   // stays a leaf; reported
 			continue;
