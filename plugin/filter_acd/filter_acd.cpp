@@ -189,6 +189,7 @@ std::map<std::string, QVariant> FilterACD::notchConcavity(MeshModel& mm, vcg::Ca
 	acd::ConvexHull hull(s.mesh.V);
 	if (cb) cb(30, "Measuring notch concavity...");
 	acd::ConcavityReport r = acd::measure_concavity(s.mesh, topo, hull);
+	if (s.flipped) log("The mesh was oriented inward; concavity is measured on it turned outward.");
 
 	// Back to MeshLab's vertices: split copies of a non-manifold vertex keep the largest value.
 	mm.updateDataMask(MeshModel::MM_VERTQUALITY | MeshModel::MM_VERTCOLOR);
@@ -241,6 +242,7 @@ FilterACD::decompose(const RichParameterList& par, MeshDocument& md, vcg::CallBa
 	if (o.time_limit_seconds < 0) throw MLException("time_limit must be 0 (no limit) or positive.");
 	if (cb) o.progress = [cb](int pct, const char* msg) { return cb(pct, msg); };
 
+	if (s.flipped) log("The mesh was oriented inward; the decomposition uses it turned outward.");
 	acd::Decomposition d = acd::decompose(s, o);
 
 	const bool hulls     = par.getBool("output_hulls");

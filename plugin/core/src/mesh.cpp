@@ -191,9 +191,12 @@ Solid make_solid(const TriMesh& in)
 	s.volume = signed_volume(s.mesh);
 	if (!(std::abs(s.volume) > 1e-12 * diag * diag * diag))
 		invalid("The mesh encloses no volume (it is flat or its shells cancel out).");
-	if (s.volume < 0)
-		invalid("The mesh is oriented inward (negative volume). Run 'Invert Faces Orientation' "
-		        "(meshing_invert_face_orientation) first.");
+	if (s.volume < 0) {
+		// Consistently oriented but inside out (e.g. horse.ply as MeshLab reads it): flip it, and say so.
+		for (Tri& t : s.mesh.F) std::swap(t[1], t[2]);
+		s.volume  = -s.volume;
+		s.flipped = true;
+	}
 	return s;
 }
 

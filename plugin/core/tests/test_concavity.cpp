@@ -56,7 +56,8 @@ ACD_TEST(bad_input_is_refused_with_a_reason)
 	CHECK(refused(open, "boundary edges"));
 	CHECK(refused(TriMesh{}, "empty"));
 	CHECK(refused(TriMesh{{Vec3(0, 0, 0), Vec3(1, 0, 0)}, {}}, "point cloud"));
-	CHECK(refused(shapes::inverted(shapes::box({0, 0, 0}, {1, 1, 1})), "inward"));
+	CHECK(make_solid(shapes::inverted(shapes::box({0, 0, 0}, {1, 1, 1}))).flipped);
+	CHECK_NEAR(make_solid(shapes::inverted(shapes::box({0, 0, 0}, {1, 1, 1}))).volume, 1.0, 1e-12);
 	TriMesh nan = shapes::box({0, 0, 0}, {1, 1, 1});
 	nan.V[0].x() = std::nan("");
 	CHECK(refused(nan, "NaN"));

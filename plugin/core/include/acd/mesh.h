@@ -40,6 +40,7 @@ struct Solid
 	int              shells = 0;            // connected components (by edges)
 	int              split_vertices = 0;    // non-manifold vertices that were split
 	int              unreferenced_vertices = 0;
+	bool             flipped = false;       // the input was inside out and has been turned outward
 	double           volume = 0;
 };
 

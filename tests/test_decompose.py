@@ -1,0 +1,165 @@
+"""generate_approximate_convex_decomposition through pymeshlab (issue 4).
+
+Every check is independent of the core's own report: volumes, closedness, overlap and concavity
+are measured again here (concavity through the separate concavity filter on each part).
+"""
+import os
+
+import numpy as np
+import pymeshlab
+import pytest
+
+import pymeshlab_acd
+from conftest import (BUNNY, L_SHAPE, PLUS, SHARED, U_SHAPE, add_mesh, extrude, inside,
+                      interior_samples, is_closed_manifold, torus, volume)
+
+
+def parts_of(ms, ids):
+    return [(ms.mesh(i).vertex_matrix(), ms.mesh(i).face_matrix(), ms.mesh(i).label()) for i in ids]
+
+
+def remeasured_concavity(V, F):
+    m = pymeshlab.MeshSet()
+    add_mesh(m, V, F)
+    return m.compute_scalar_by_notch_concavity()["max_concavity"]
+
+
+def check_partition(ms, src_id, ids, tau_abs=None, overlap_samples=0, seed=0):
+    src = ms.mesh(src_id)
+    v0 = volume(src.vertex_matrix(), src.face_matrix())
+    parts = parts_of(ms, ids)
+    total = 0.0
+    for V, F, label in parts:
+        assert label.startswith("acd_")
+        assert is_closed_manifold(F), f"{label} is not closed and 2-manifold"
+        vol = volume(V, F)
+        assert vol > 0
+        total += vol
+        if tau_abs is not None:
+            assert remeasured_concavity(V, F) <= tau_abs * (1 + 1e-9), f"{label} exceeds tau"
+    assert abs(total - v0) / v0 < 1e-6
+    if overlap_samples:
+        rng = np.random.default_rng(seed)
+        for i, (V, F, label) in enumerate(parts):
+            pts = interior_samples(V, F, overlap_samples, rng)
+            for j, (V2, F2, label2) in enumerate(parts):
+                if i != j and len(pts):
+                    # points well inside part i (not on a shared cap) must not be inside part j
+                    assert not inside(V2, F2, pts).any(), f"{label} overlaps {label2}"
+    return parts
+
+
+@pytest.mark.parametrize("selection", ["best", "bisector"])
+@pytest.mark.parametrize("shape,expected", [(L_SHAPE, {2}), (U_SHAPE, {3}), (PLUS, {4, 5})])
+def test_known_answers(ms, shape, expected, selection):
+    V, F = extrude(shape, 0, 1)
+    add_mesh(ms, V, F)
+    res, ids = pymeshlab_acd.decompose(ms, tau=0.1, cut_plane_selection=selection)
+    assert res["parts"] in expected and len(ids) == res["parts"]
+    check_partition(ms, 0, ids, tau_abs=res["tau_model_units"], overlap_samples=30)
+
+
+def test_convex_mesh_gives_one_part(ms):
+    ms.create_sphere(subdiv=3)
+    res, ids = pymeshlab_acd.decompose(ms, tau=1.0)
+    assert res["parts"] == 1 and len(ids) == 1
+
+
+def test_input_layer_is_untouched_and_runs_are_deterministic(ms):
+    V, F = torus()
+    add_mesh(ms, V, F)
+    res1, ids1 = pymeshlab_acd.decompose(ms, tau=4.0)
+    ms.set_current_mesh(0)
+    assert np.array_equal(ms.mesh(0).vertex_matrix(), V) and np.array_equal(ms.mesh(0).face_matrix(), F)
+    res2, ids2 = pymeshlab_acd.decompose(ms, tau=4.0)
+    assert res1["parts"] == res2["parts"]
+    for a, b in zip(parts_of(ms, ids1), parts_of(ms, ids2)):
+        # MeshLab suffixes repeated layer names ("acd_00(1)"); the geometry must be identical
+        assert b[2].startswith(a[2]) and np.array_equal(a[0], b[0]) and np.array_equal(a[1], b[1])
+
+
+def test_torus_genus_one_needs_three_parts(ms):
+    V, F = torus(R=2.0, r=0.5)
+    add_mesh(ms, V, F)
+    # tau well below the tube radius
+    res, ids = pymeshlab_acd.decompose(ms, tau=0.2, tau_unit="model_units")
+    assert res["parts"] >= 3
+    check_partition(ms, 0, ids, tau_abs=0.2)
+
+
+def test_bunny_partition_certificate_and_tree(ms):
+    ms.load_new_mesh(BUNNY)
+    res, ids = pymeshlab_acd.decompose(ms, tau=5.0)
+    assert res["parts"] == len(ids) >= 2
+    check_partition(ms, 0, ids, tau_abs=res["tau_model_units"], overlap_samples=15)
+    tree = res["tree"]
+    leaves = sorted(n["path"] for n in tree["nodes"] if n["leaf"])
+    assert ["acd_" + p for p in leaves] == [ms.mesh(i).label() for i in ids]   # stable order
+    for n in tree["nodes"]:
+        if not n["leaf"]:
+            kids = [tree["nodes"][c] for c in n["children"]]
+            assert sum(k["volume"] for k in kids) == pytest.approx(n["volume"], rel=1e-9)
+            assert "plane" in n
+
+
+def test_bunny_smaller_tau_never_gives_fewer_parts(ms):
+    counts = []
+    for tau in (12.0, 8.0, 5.0):
+        ms.load_new_mesh(BUNNY)
+        res, _ = pymeshlab_acd.decompose(ms, tau=tau, cut_plane_selection="bisector")
+        counts.append(res["parts"])
+    assert counts == sorted(counts), counts
+
+
+def test_max_parts_bounds_the_work(ms):
+    ms.load_new_mesh(BUNNY)
+    res, ids = pymeshlab_acd.decompose(ms, tau=1.0, max_parts=4)
+    assert res["parts"] == 4 and res["max_parts_reached"]
+    check_partition(ms, 0, ids)
+
+
+def test_hulls_are_added_and_bounded(ms):
+    V, F = extrude(U_SHAPE, 0, 1)
+    add_mesh(ms, V, F)
+    res, ids = pymeshlab_acd.decompose(ms, tau=0.1, output_hulls=True, max_hull_vertices=6)
+    labels = [ms.mesh(i).label() for i in ids]
+    assert sum(l.startswith("acd_hull_") for l in labels) == res["parts"] == 3
+    for i in ids:
+        if ms.mesh(i).label().startswith("acd_hull_"):
+            assert ms.mesh(i).vertex_number() <= 6
+
+
+@pytest.mark.parametrize("bad", ["open", "nonmanifold", "tau"])
+def test_bad_input_gets_a_clear_error(ms, bad):
+    V, F = extrude(L_SHAPE, 0, 1)
+    if bad == "open":
+        add_mesh(ms, V, F[:-2])
+        with pytest.raises(pymeshlab.PyMeshLabException, match="(?s)boundary edges.*Close Holes"):
+            pymeshlab_acd.decompose(ms, tau=1.0)
+    elif bad == "nonmanifold":
+        # two boxes sharing one edge: closed, but that edge has four faces
+        A, FA = extrude([(0, 0), (1, 0), (1, 1), (0, 1)], 0, 1)
+        B, FB = extrude([(1, 1), (2, 1), (2, 2), (1, 2)], 0, 1)
+        W, inv = np.unique(np.vstack([A, B]), axis=0, return_inverse=True)
+        add_mesh(ms, W, inv.reshape(-1)[np.vstack([FA, FB + len(A)])])
+        with pytest.raises(pymeshlab.PyMeshLabException, match="non-manifold edges"):
+            pymeshlab_acd.decompose(ms, tau=1.0)
+    else:
+        add_mesh(ms, V, F)
+        with pytest.raises(pymeshlab.PyMeshLabException, match="tau"):
+            pymeshlab_acd.decompose(ms, tau=0.0)
+
+
+CLOSED = ["cow.obj", "spot.obj", "homer.obj", "fandisk.obj", "cheburashka.obj", "rocker-arm.obj",
+          "horse.ply", "nefertiti.obj", "igea.ply"]
+
+
+@pytest.mark.parametrize("name", CLOSED)
+def test_shared_closed_meshes_partition(ms, name):
+    path = SHARED / name
+    if not path.exists():
+        pytest.skip(f"{path} not present (shared data sits beside the repo)")
+    ms.load_new_mesh(str(path))
+    res, ids = pymeshlab_acd.decompose(ms, tau=10.0, cut_plane_selection="bisector")
+    assert res["parts"] >= 1
+    check_partition(ms, 0, ids)
