@@ -23,9 +23,9 @@ class BuildWithPlugin(build_py):
             raise RuntimeError(f"{script} not found: install from a checkout of meshlab-acd")
         env = dict(os.environ, ACD_SCALAR="double")
         subprocess.check_call(["bash", str(script)], env=env)
-        cache = os.environ.get("ACD_CACHE") or os.path.join(
-            os.environ.get("XDG_CACHE_HOME", os.path.expanduser("~/.cache")), "meshlab-acd")
-        built = pathlib.Path(cache) / "build-double" / "filter_acd" / "libfilter_acd.so"
+        build_dir = subprocess.check_output(
+            ["bash", "-c", f'source "{REPO}/scripts/env.sh" && printf %s "$ACD_BUILD_DIR"'], env=env, text=True)
+        built = pathlib.Path(build_dir) / "filter_acd" / "libfilter_acd.so"
         dest = pathlib.Path(self.build_lib) / "pymeshlab_acd" / "lib"
         dest.mkdir(parents=True, exist_ok=True)
         shutil.copy2(built, dest / built.name)

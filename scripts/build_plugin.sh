@@ -3,14 +3,14 @@
 #   scripts/build_plugin.sh            double precision, linked to pymeshlab's libmeshlab-common (pymeshlab,
 #                                      and MeshLab GUIs built with MESHLAB_BUILD_WITH_DOUBLE_SCALAR=ON)
 #   ACD_SCALAR=float scripts/build_plugin.sh   single precision, for MeshLab's stock (float) GUI builds
-# Output: $ACD_CACHE/build-<scalar>/filter_acd/libfilter_acd.so
+# Output: $ACD_BUILD_DIR/filter_acd/libfilter_acd.so (see scripts/env.sh)
 set -euo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
 source "$here/env.sh"
 bash "$here/fetch_deps.sh" >/dev/null
 
-scalar="${ACD_SCALAR:-double}"
-build="$ACD_CACHE/build-$scalar"
+scalar="$ACD_SCALAR"
+build="$ACD_BUILD_DIR"
 extra=()
 if [ "$scalar" = "double" ]; then
 	common="$(python3 -c 'import os, pymeshlab; print(os.path.join(os.path.dirname(pymeshlab.__file__), "lib", "libmeshlab-common.so"))')"

@@ -28,14 +28,14 @@ _loaded = None
 
 
 def plugin_path():
-    """Where the plugin is: $ACD_PLUGIN, the copy installed with this package, or a repo build."""
+    """Where the plugin is: $ACD_PLUGIN, the copy installed with this package, or a build in the cache."""
     candidates = []
     if os.environ.get("ACD_PLUGIN"):
         candidates.append(pathlib.Path(os.environ["ACD_PLUGIN"]))
     candidates.append(pathlib.Path(__file__).resolve().parent / "lib" / _PLUGIN)
     cache = os.environ.get("ACD_CACHE") or os.path.join(
         os.environ.get("XDG_CACHE_HOME", os.path.expanduser("~/.cache")), "meshlab-acd")
-    candidates.append(pathlib.Path(cache) / "build-double" / "filter_acd" / _PLUGIN)
+    candidates += sorted(pathlib.Path(cache).glob("build-double-*/filter_acd/" + _PLUGIN))
     for c in candidates:
         if c.is_file():
             return c
