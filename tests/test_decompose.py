@@ -162,4 +162,4 @@ def test_shared_closed_meshes_partition(ms, name):
     ms.load_new_mesh(str(path))
     res, ids = pymeshlab_acd.decompose(ms, tau=10.0, cut_plane_selection="bisector")
     assert res["parts"] >= 1
-    check_partition(ms, 0, ids)
+    check_partition(ms, 0, ids, tau_abs=res["tau_model_units"], overlap_samples=4)
