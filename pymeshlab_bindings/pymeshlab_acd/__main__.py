@@ -19,14 +19,15 @@ BUNNY = os.path.join(os.path.dirname(pymeshlab.__file__), "tests", "sample_meshe
 def _meshset(path, verbose):
     load()
     ms = pymeshlab.MeshSet()
-    ms.set_verbosity(verbose)   # prints MeshLab's progress callback ("... [ 40% ]")
     ms.load_new_mesh(str(path))
+    ms.set_verbosity(verbose)   # prints MeshLab's progress callback ("... [ 40% ]")
     return ms
 
 
 def cmd_concavity(a):
     ms = _meshset(a.mesh, a.progress)
     r = ms.compute_scalar_by_notch_concavity()
+    ms.set_verbosity(False)
     m = ms.current_mesh()
     print(f"mesh            {a.mesh}  ({m.vertex_number()} vertices, {m.face_number()} faces)")
     print(f"notches         {r['notches']}")
@@ -51,6 +52,7 @@ def cmd_decompose(a):
     t0 = time.perf_counter()
     res, ids = decompose(ms, **params)
     wall = time.perf_counter() - t0
+    ms.set_verbosity(False)   # progress is over; keep the file saving quiet
     print(f"mesh             {a.mesh}  ({ms.mesh(src).face_number()} faces)")
     print(f"tau              {a.tau} {a.tau_unit} = {res['tau_model_units']:.6g} model units")
     print(f"parts            {res['parts']}")
