@@ -48,9 +48,8 @@ def test_bunny_concavity_is_finite_positive_and_below_diagonal(ms):
     diag = ms.current_mesh().bounding_box().diagonal()
     assert r["notches"] > 1000 and r["bridges"] > 0 and r["pockets"] > 0
     assert 0 < r["max_concavity"] < diag and math.isfinite(r["max_concavity"])
-    # independent check: no vertex is farther from the convex hull than the max reported
-    # concavity could allow? the measure is a distance inside the hull, so it cannot exceed
-    # the largest distance of any vertex to the hull's facets' planes
+    # independent bound: the measure is a distance from a vertex to a hull facet, so it cannot
+    # exceed the largest distance of any vertex to any of the hull's facet planes
     ms.generate_convex_hull()
     hull = ms.current_mesh()
     HV, HF = hull.vertex_matrix(), hull.face_matrix()
