@@ -9,6 +9,7 @@ filters as ``pymeshlab.MeshSet`` methods::
     ms.compute_scalar_by_notch_concavity()
     ms.generate_approximate_convex_decomposition(tau=2.0)
 """
+import functools
 import json
 import os
 import pathlib
@@ -52,9 +53,31 @@ def load():
         if not all(name in pymeshlab.filter_list() for name in FILTERS):
             pymeshlab.load_plugin(str(path))   # a second load of the same plugin raises
         for name in FILTERS:
-            setattr(pymeshlab.MeshSet, name, pymeshlab.bind_function(name))
+            setattr(pymeshlab.MeshSet, name, _reset_log_on_error(pymeshlab.bind_function(name)))
         _loaded = path
     return _loaded
+
+
+_anchor = None
+
+
+def _reset_log_on_error(method):
+    """pymeshlab 2025.07 keeps a static pointer to the log of the MeshSet whose filter last ran and
+    clears it only when a filter succeeds. After a failed filter, once that MeshSet is freed, the
+    next mesh load that reports progress (e.g. any .obj) writes through the dangling pointer and
+    crashes the process. A successful, trivial filter on a private MeshSet clears the pointer."""
+    @functools.wraps(method)
+    def call(self, *args, **kwargs):
+        global _anchor
+        try:
+            return method(self, *args, **kwargs)
+        except pymeshlab.PyMeshLabException:
+            if _anchor is None:
+                _anchor = pymeshlab.MeshSet()
+            _anchor.create_cube()
+            _anchor.clear()
+            raise
+    return call
 
 
 def mesh_ids(ms):
