@@ -5,45 +5,65 @@
 #include <map>
 #include <queue>
 #include <unordered_map>
+#include <vector>
 
 namespace acd {
 
 namespace {
 
 // A* on the mesh's edge graph with the straight-line distance as the (admissible) heuristic.
-// Stores the path's vertices, p first, in `out`; returns false if q is unreachable from p.
-bool shortest_path(const TriMesh& m, const Topology& t, int p, int q, std::vector<int>& out,
-                   std::unordered_map<int, double>& g, std::unordered_map<int, int>& from)
+// Per-vertex state lives in arrays reused across searches; a stamp tells this search's entries.
+struct PathSearch
 {
-	g.clear();
-	from.clear();
+	std::vector<double> g;
+	std::vector<int>    from, stamp;
+	int                 round = 0;
 	using Item = std::pair<double, int>;
-	std::priority_queue<Item, std::vector<Item>, std::greater<Item>> open;
-	const Vec3& goal = m.V[q];
-	g[p]             = 0;
-	open.emplace((m.V[p] - goal).norm(), p);
-	while (!open.empty()) {
-		auto [f, v] = open.top();
-		open.pop();
-		const double gv = g[v];
-		if (f > gv + (m.V[v] - goal).norm() + 1e-300) continue;   // stale entry
-		if (v == q) break;
-		t.for_each_neighbour(v, [&](int w) {
-			const double gw = gv + (m.V[w] - m.V[v]).norm();
-			auto         it = g.find(w);
-			if (it == g.end() || gw < it->second) {
-				g[w]    = gw;
-				from[w] = v;
-				open.emplace(gw + (m.V[w] - goal).norm(), w);
+	std::vector<Item>   heap;
+
+	explicit PathSearch(int nv) : g(nv), from(nv), stamp(nv, 0) {}
+
+	// Stores the path's vertices, p first, in `out`; returns false if q is unreachable from p.
+	bool run(const TriMesh& m, const Topology& t, int p, int q, std::vector<int>& out)
+	{
+		++round;
+		heap.clear();
+		const Vec3& goal = m.V[q];
+		auto        push = [&](double f, int v) {
+            heap.emplace_back(f, v);
+            std::push_heap(heap.begin(), heap.end(), std::greater<Item>());
+		};
+		g[p]     = 0;
+		stamp[p] = round;
+		push((m.V[p] - goal).norm(), p);
+		bool found = false;
+		while (!heap.empty()) {
+			std::pop_heap(heap.begin(), heap.end(), std::greater<Item>());
+			auto [f, v] = heap.back();
+			heap.pop_back();
+			const double gv = g[v];
+			if (f > gv + (m.V[v] - goal).norm() + 1e-300) continue;   // stale entry
+			if (v == q) {
+				found = true;
+				break;
 			}
-		});
+			t.for_each_neighbour(v, [&](int w) {
+				const double gw = gv + (m.V[w] - m.V[v]).norm();
+				if (stamp[w] != round || gw < g[w]) {
+					stamp[w] = round;
+					g[w]     = gw;
+					from[w]  = v;
+					push(gw + (m.V[w] - goal).norm(), w);
+				}
+			});
+		}
+		if (!found) return false;
+		for (int v = q; v != p; v = from[v]) out.push_back(v);
+		out.push_back(p);
+		std::reverse(out.begin(), out.end());   // p ... q
+		return true;
 	}
-	if (!g.count(q)) return false;
-	for (int v = q; v != p; v = from[v]) out.push_back(v);
-	out.push_back(p);
-	std::reverse(out.begin(), out.end());   // p ... q
-	return true;
-}
+};
 
 } // namespace
 
@@ -60,13 +80,45 @@ ConcavityReport measure_concavity(const TriMesh& m, const Topology& topo, const 
 
 	// 1. Surface faces on the hull: all three corners and the centroid on the hull's boundary
 	//    (a face joining points of different facets cuts through the inside, so its centroid is deep).
-	std::vector<double> vdist(nv);
-	for (int v = 0; v < nv; ++v) vdist[v] = hull.distance_to_boundary(m.V[v]);
+	//    A vertex's distance to the boundary is 1-Lipschitz, so a neighbour's distance minus the edge
+	//    length bounds it from below: visiting vertices outward from the hull vertices, deep ones
+	//    are ruled out without a query (queries from deep points are the slow ones).
+	std::vector<double> vdist(nv, -1.0);   // exact distance to the boundary, -1 if not computed
+	std::vector<double> lower(nv, -1.0);   // a lower bound of it, -1 until the vertex is visited
+	{
+		std::vector<int> queue;
+		queue.reserve(nv);
+		int unvisited = 0;
+		for (int i = 0; i < (int) hull.point_source.size(); ++i) {
+			const int v = hull.point_source[i];
+			if (lower[v] < 0) {
+				vdist[v] = lower[v] = 0;
+				queue.push_back(v);
+			}
+		}
+		for (size_t head = 0; head < queue.size() || (int) queue.size() < nv; ++head) {
+			if (head == queue.size()) {   // a shell without hull vertices (a cavity)
+				while (lower[unvisited] >= 0) ++unvisited;
+				const int v = unvisited;
+				vdist[v] = lower[v] = hull.distance_to_boundary(m.V[v]);
+				queue.push_back(v);
+			}
+			const int q = queue[head];
+			topo.for_each_neighbour(q, [&](int v) {
+				if (lower[v] >= 0) return;
+				const double lb = lower[q] - (m.V[v] - m.V[q]).norm();
+				if (lb > eps) lower[v] = lb;
+				else vdist[v] = lower[v] = hull.distance_to_boundary(m.V[v]);
+				queue.push_back(v);
+			});
+		}
+	}
+	auto on_hull = [&](int v) { return vdist[v] >= 0 && vdist[v] <= eps; };
 	std::vector<int>    face_facet(nf, -1);   // hull facet holding an on-hull face, else -1
 	std::vector<double> covered(hull.facets(), 0.0);
 	for (int f = 0; f < nf; ++f) {
 		const Tri& t = m.F[f];
-		if (vdist[t[0]] > eps || vdist[t[1]] > eps || vdist[t[2]] > eps) continue;
+		if (!on_hull(t[0]) || !on_hull(t[1]) || !on_hull(t[2])) continue;
 		int tri = -1;
 		if (hull.distance_to_boundary((m.V[t[0]] + m.V[t[1]] + m.V[t[2]]) / 3.0, &tri) > eps) continue;
 		face_facet[f] = hull.triangle_facet[tri];
@@ -97,14 +149,13 @@ ConcavityReport measure_concavity(const TriMesh& m, const Topology& topo, const 
 				                                      std::array<int, 2>{-1, -1});
 				it->second[a < b ? 0 : 1] = hull.triangle_facet[t];
 			}
-		std::unordered_map<int, double> g;
-		std::unordered_map<int, int>    from;
-		std::vector<int>                path;
+		PathSearch       search(nv);
+		std::vector<int> path;
 		for (const auto& [e, fc] : hull_edges) {
 			if (fc[0] < 0 || fc[1] < 0 || fc[0] == fc[1]) continue;
 			if (!bridge[fc[0]] && !bridge[fc[1]]) continue;
 			path.clear();
-			if (!shortest_path(m, topo, hull.point_source[e.first], hull.point_source[e.second], path, g, from))
+			if (!search.run(m, topo, hull.point_source[e.first], hull.point_source[e.second], path))
 				continue;
 			for (size_t i = 0; i + 1 < path.size(); ++i) {
 				if (bridge[fc[0]]) cut[directed(path[i], path[i + 1])].push_back(fc[0]);
@@ -166,21 +217,39 @@ ConcavityReport measure_concavity(const TriMesh& m, const Topology& topo, const 
 	for (int p = 0; p < r.patches; ++p)
 		for (const auto& fw : votes[p]) patch_bridges[p].push_back(fw.first);
 
-	// 6. Concavity of each pocket vertex: distance to its patch's bridge (or, for a patch no bridge
-	//    bounds, such as a closed cavity, to the hull).
-	for (int f = 0; f < nf; ++f) {
-		if (patch[f] < 0) continue;
-		for (int v : m.F[f]) {
-			double d = vdist[v];
-			int    b = -1;
-			for (int fct : patch_bridges[patch[f]]) {
-				const double df = hull.distance_to_facet(m.V[v], fct);
+	// 6. Concavity of each pocket vertex: distance to its patch's nearest bridge (or, for a patch no
+	//    bridge bounds, such as a closed cavity, to the hull). A facet is no nearer than its plane,
+	//    so bridges are tried nearest plane first and the rest skipped once a facet is nearer.
+	std::vector<long long> pairs;   // (vertex, patch), each once
+	pairs.reserve(3 * nf);
+	for (int f = 0; f < nf; ++f)
+		if (patch[f] >= 0)
+			for (int v : m.F[f]) pairs.push_back((static_cast<long long>(v) << 32) | patch[f]);
+	std::sort(pairs.begin(), pairs.end());
+	pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
+	std::vector<std::pair<double, int>> near;
+	for (long long vp : pairs) {
+		const int   v = (int) (vp >> 32), p = (int) (vp & 0xffffffff);
+		const Vec3& x = m.V[v];
+		double      d = 0;
+		int         b = -1;
+		if (patch_bridges[p].empty()) {
+			if (vdist[v] < 0) vdist[v] = hull.distance_to_boundary(x);
+			d = vdist[v];
+		}
+		else {
+			near.clear();
+			for (int fct : patch_bridges[p]) near.emplace_back(std::max(0.0, -hull.facet_plane[fct].eval(x)), fct);
+			std::sort(near.begin(), near.end());
+			for (const auto& [plane_dist, fct] : near) {
+				if (b >= 0 && plane_dist >= d) break;
+				const double df = hull.distance_to_facet(x, fct);
 				if (b < 0 || df < d) d = df, b = fct;
 			}
-			if (d > r.vertex_concavity[v]) {
-				r.vertex_concavity[v] = d;
-				r.vertex_bridge[v]    = b;
-			}
+		}
+		if (d > r.vertex_concavity[v]) {
+			r.vertex_concavity[v] = d;
+			r.vertex_bridge[v]    = b;
 		}
 	}
 

@@ -31,21 +31,14 @@ double enclosing_diameter(const std::vector<Vec3>& pts)
 
 namespace {
 
+// What cutting a node needs from its measure; kept while the node waits to be cut.
 struct Measured
 {
+	Topology        topo;
+	ConvexHull      hull;
 	ConcavityReport rep;
-	double          volume = 0;
+	explicit Measured(const TriMesh& m) : topo(m), hull(m.V), rep(measure_concavity(m, topo, hull)) {}
 };
-
-Measured measure(const TriMesh& m, Topology& topo_out, std::unique_ptr<ConvexHull>& hull_out)
-{
-	Measured r;
-	topo_out = Topology(m);
-	hull_out = std::make_unique<ConvexHull>(m.V);
-	r.rep    = measure_concavity(m, topo_out, *hull_out);
-	r.volume = signed_volume(m);
-	return r;
-}
 
 // A candidate cut's parts scored by the paper's measure itself (the same one the recursion uses).
 double part_concavity(const TriMesh& m)
@@ -193,23 +186,28 @@ Decomposition decompose(const Solid& solid, const DecomposeOptions& opt)
 	Decomposition D;
 	D.tau = opt.tau;
 
-	auto make_node = [&](TriMesh mesh, int parent, const std::string& path) {
+	// Nodes waiting to be cut keep their measure; others drop it.
+	std::vector<std::unique_ptr<Measured>> measured;
+	auto add_node = [&](TriMesh mesh, int parent, const std::string& path) {
 		Node n;
 		n.parent = parent;
 		n.path   = path;
-		Topology                    topo(mesh);
-		std::unique_ptr<ConvexHull> hull;
-		Measured                    ms = measure(mesh, topo, hull);
-		n.concavity = ms.rep.max_concavity;
-		n.volume    = ms.volume;
-		n.notches   = ms.rep.notches;
-		if (ms.rep.max_vertex >= 0) n.notch = mesh.V[ms.rep.max_vertex];
-		n.mesh = std::move(mesh);
+		n.mesh   = std::move(mesh);
 		D.nodes.push_back(std::move(n));
+		measured.emplace_back();
 		return (int) D.nodes.size() - 1;
 	};
+	auto measure_node = [&](int id) {
+		Node& n         = D.nodes[id];
+		auto  ms        = std::make_unique<Measured>(n.mesh);
+		n.concavity     = ms->rep.max_concavity;
+		n.volume        = signed_volume(n.mesh);
+		n.notches       = ms->rep.notches;
+		if (ms->rep.max_vertex >= 0) n.notch = n.mesh.V[ms->rep.max_vertex];
+		if (n.concavity > opt.tau) measured[id] = std::move(ms);
+	};
 
-	make_node(solid.mesh, -1, "0");
+	measure_node(add_node(solid.mesh, -1, "0"));
 	const double c0 = std::max(D.nodes[0].concavity, opt.tau);
 
 	// Open nodes, most concave first (ties by path), so a max_parts bound cuts the worst notches.
@@ -236,6 +234,7 @@ Decomposition decompose(const Solid& solid, const DecomposeOptions& opt)
 		// A cut that keeps failing to lower the concavity must not recurse forever.
 		if (D.nodes[id].path.size() > 96) {
 			D.nodes[id].uncut = true;
+			measured[id].reset();
 			continue;
 		}
 		if (opt.progress) {
@@ -247,16 +246,13 @@ Decomposition decompose(const Solid& solid, const DecomposeOptions& opt)
 				throw Error(Error::Cancelled, "The decomposition was cancelled.");
 		}
 
-		// Re-measure to get the notch's data (topology, hull and report are not kept per node).
-		const TriMesh&              mesh = D.nodes[id].mesh;
-		Topology                    topo(mesh);
-		std::unique_ptr<ConvexHull> hull;
-		Measured                    ms = measure(mesh, topo, hull);
-		std::vector<Plane> planes = candidate_planes(mesh, topo, *hull, ms.rep, opt.cut_plane_selection,
+		const TriMesh&  mesh = D.nodes[id].mesh;
+		const Measured& ms   = *measured[id];
+		std::vector<Plane> planes = candidate_planes(mesh, ms.topo, ms.hull, ms.rep, opt.cut_plane_selection,
 		                                             opt.candidate_planes);
 		if (opt.cut_plane_selection == CutPlaneSelection::Bisector && planes.size() == 1) {
 			// Fall back to the other candidates only if the bisector cannot split.
-			auto more = candidate_planes(mesh, topo, *hull, ms.rep, CutPlaneSelection::Best, opt.candidate_planes);
+			auto more = candidate_planes(mesh, ms.topo, ms.hull, ms.rep, CutPlaneSelection::Best, opt.candidate_planes);
 			planes.insert(planes.end(), more.begin() + std::min<size_t>(1, more.size()), more.end());
 		}
 		const Vec3 notch = mesh.V[ms.rep.max_vertex];
@@ -314,6 +310,7 @@ Decomposition decompose(const Solid& solid, const DecomposeOptions& opt)
 		const bool   found = pick >= 0;
 		SplitOutcome best;
 		if (found) best = std::move(trials[pick].so);
+		measured[id].reset();
 		if (!found) {
 			D.nodes[id].uncut = true;   // stays a leaf; reported
 			continue;
@@ -322,10 +319,12 @@ Decomposition decompose(const Solid& solid, const DecomposeOptions& opt)
 		D.nodes[id].plane     = best.plane;
 		const std::string path = D.nodes[id].path;
 		for (int s = 0; s < 2; ++s) {
-			int c                   = make_node(std::move(best.parts[s]), id, path + char('0' + s));
-			D.nodes[id].child[s] = c;
-			open.push(c);
+			const int c          = add_node(std::move(best.parts[s]), id, path + char('0' + s));
+			D.nodes[id].child[s] = c;   // after add_node: it may move D.nodes
 		}
+		// The two halves are independent: measure them on two cores.
+		parallel_for(2, [&](size_t s) { measure_node(D.nodes[id].child[s]); });
+		for (int s = 0; s < 2; ++s) open.push(D.nodes[id].child[s]);
 		++parts;
 		if (std::getenv("ACD_DEBUG"))
 			std::fprintf(stderr, "cut %s conc %.4g notch (%.3f %.3f %.3f) n (%.3f %.3f %.3f) -> %.4g %.4g (faces %zu %zu)\n",

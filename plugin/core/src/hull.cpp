@@ -7,6 +7,7 @@
 #include <CGAL/Surface_mesh.h>
 #include <CGAL/convex_hull_3.h>
 
+#include <cmath>
 #include <cstring>
 #include <numeric>
 #include <unordered_map>
@@ -141,9 +142,15 @@ double ConvexHull::distance_to_boundary(const Vec3& p, int* triangle) const
 
 double ConvexHull::distance_to_facet(const Vec3& p, int facet) const
 {
-	const Point q  = to_cgal(p);
-	double      d2 = std::numeric_limits<double>::infinity();
-	for (int t : facet_triangles[facet]) d2 = std::min(d2, CGAL::squared_distance(q, tree_->tris[t]));
+	// The facet's triangles tile a convex polygon: once one holds p's projection, the plane
+	// distance is the answer.
+	const double plane2 = std::pow(facet_plane[facet].eval(p), 2) * (1 + 1e-12);
+	const Point  q      = to_cgal(p);
+	double       d2     = std::numeric_limits<double>::infinity();
+	for (int t : facet_triangles[facet]) {
+		d2 = std::min(d2, CGAL::squared_distance(q, tree_->tris[t]));
+		if (d2 <= plane2) break;
+	}
 	return std::sqrt(d2);
 }
 
