@@ -36,7 +36,9 @@ def plugin_path():
     candidates.append(pathlib.Path(__file__).resolve().parent / "lib" / _PLUGIN)
     cache = os.environ.get("ACD_CACHE") or os.path.join(
         os.environ.get("XDG_CACHE_HOME", os.path.expanduser("~/.cache")), "meshlab-acd")
-    candidates += sorted(pathlib.Path(cache).glob("build-double-*/filter_acd/" + _PLUGIN))
+    # Builds of several checkouts may share the cache: the newest first.
+    candidates += sorted(pathlib.Path(cache).glob("build-double-*/filter_acd/" + _PLUGIN),
+                         key=lambda p: p.stat().st_mtime, reverse=True)
     for c in candidates:
         if c.is_file():
             return c

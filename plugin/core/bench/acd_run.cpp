@@ -1,11 +1,10 @@
 // Decompose an OBJ file from the command line (for profiling the core without MeshLab):
 //   acd_run mesh.obj tau_percent [bisector|best] [max_parts]
 #include "acd/decompose.h"
+#include "obj_io.h"
 
 #include <chrono>
 #include <cstdio>
-#include <fstream>
-#include <sstream>
 
 int main(int argc, char** argv)
 {
@@ -13,25 +12,7 @@ int main(int argc, char** argv)
 		std::fprintf(stderr, "usage: %s mesh.obj tau_percent [bisector|best] [max_parts]\n", argv[0]);
 		return 2;
 	}
-	acd::TriMesh  m;
-	std::ifstream in(argv[1]);
-	std::string   line;
-	while (std::getline(in, line)) {
-		std::istringstream ss(line);
-		std::string        tag;
-		ss >> tag;
-		if (tag == "v") {
-			double x, y, z;
-			ss >> x >> y >> z;
-			m.V.emplace_back(x, y, z);
-		}
-		else if (tag == "f") {
-			std::vector<int> idx;
-			std::string      tok;
-			while (ss >> tok) idx.push_back(std::stoi(tok.substr(0, tok.find('/'))) - 1);
-			for (size_t k = 1; k + 1 < idx.size(); ++k) m.F.push_back({idx[0], idx[k], idx[k + 1]});
-		}
-	}
+	acd::TriMesh m = acd::bench::read_obj(argv[1]);
 	try {
 		auto                  t0 = std::chrono::steady_clock::now();
 		acd::Solid            s  = acd::make_solid(m);

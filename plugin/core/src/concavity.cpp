@@ -1,4 +1,5 @@
 #include "acd/concavity.h"
+#include "acd/parallel.h"
 
 #include <algorithm>
 #include <cmath>
@@ -21,7 +22,14 @@ struct PathSearch
 	using Item = std::pair<double, int>;
 	std::vector<Item>   heap;
 
-	explicit PathSearch(int nv) : g(nv), from(nv), stamp(nv, 0) {}
+	// Stamps only grow, so a search reused on another mesh never sees stale entries as current.
+	void resize(int nv)
+	{
+		if ((int) g.size() == nv) return;
+		g.assign(nv, 0);
+		from.assign(nv, 0);
+		stamp.assign(nv, 0);
+	}
 
 	// Stores the path's vertices, p first, in `out`; returns false if q is unreachable from p.
 	bool run(const TriMesh& m, const Topology& t, int p, int q, std::vector<int>& out)
@@ -85,6 +93,7 @@ ConcavityReport measure_concavity(const TriMesh& m, const Topology& topo, const 
 	//    are ruled out without a query (queries from deep points are the slow ones).
 	std::vector<double> vdist(nv, -1.0);   // exact distance to the boundary, -1 if not computed
 	std::vector<double> lower(nv, -1.0);   // a lower bound of it, -1 until the vertex is visited
+	std::vector<int>    nearest(nv, -1);   // hull triangle nearest to the vertex, or to a neighbour
 	{
 		std::vector<int> queue;
 		queue.reserve(nv);
@@ -93,6 +102,7 @@ ConcavityReport measure_concavity(const TriMesh& m, const Topology& topo, const 
 			const int v = hull.point_source[i];
 			if (lower[v] < 0) {
 				vdist[v] = lower[v] = 0;
+				nearest[v]          = hull.point_triangle[i];
 				queue.push_back(v);
 			}
 		}
@@ -100,15 +110,18 @@ ConcavityReport measure_concavity(const TriMesh& m, const Topology& topo, const 
 			if (head == queue.size()) {   // a shell without hull vertices (a cavity)
 				while (lower[unvisited] >= 0) ++unvisited;
 				const int v = unvisited;
-				vdist[v] = lower[v] = hull.distance_to_boundary(m.V[v]);
+				vdist[v] = lower[v] = hull.distance_to_boundary(m.V[v], &nearest[v]);
 				queue.push_back(v);
 			}
 			const int q = queue[head];
 			topo.for_each_neighbour(q, [&](int v) {
 				if (lower[v] >= 0) return;
 				const double lb = lower[q] - (m.V[v] - m.V[q]).norm();
-				if (lb > eps) lower[v] = lb;
-				else vdist[v] = lower[v] = hull.distance_to_boundary(m.V[v]);
+				if (lb > eps) {
+					lower[v]   = lb;
+					nearest[v] = nearest[q];
+				}
+				else vdist[v] = lower[v] = hull.distance_to_boundary(m.V[v], &nearest[v], nearest[q]);
 				queue.push_back(v);
 			});
 		}
@@ -120,7 +133,7 @@ ConcavityReport measure_concavity(const TriMesh& m, const Topology& topo, const 
 		const Tri& t = m.F[f];
 		if (!on_hull(t[0]) || !on_hull(t[1]) || !on_hull(t[2])) continue;
 		int tri = -1;
-		if (hull.distance_to_boundary((m.V[t[0]] + m.V[t[1]] + m.V[t[2]]) / 3.0, &tri) > eps) continue;
+		if (hull.distance_to_boundary((m.V[t[0]] + m.V[t[1]] + m.V[t[2]]) / 3.0, &tri, nearest[t[0]]) > eps) continue;
 		face_facet[f] = hull.triangle_facet[tri];
 		covered[face_facet[f]] += 0.5 * (m.V[t[1]] - m.V[t[0]]).cross(m.V[t[2]] - m.V[t[0]]).norm();
 	}
@@ -138,8 +151,8 @@ ConcavityReport measure_concavity(const TriMesh& m, const Topology& topo, const 
 	//    region on its left: the face holding the directed mesh edge (a,b) of the path votes for B,
 	//    the face holding (b,a) for the facet on the other side. Edges inside one merged coplanar
 	//    facet are not facet edges and are skipped.
-	std::unordered_map<long long, std::vector<int>> cut;   // directed mesh edge -> facets on its left
-	auto directed = [](int a, int b) { return (static_cast<long long>(a) << 32) | static_cast<unsigned>(b); };
+	std::vector<char>                on_path(3 * nf, 0);   // per directed edge (face corner 3f+k)
+	std::vector<std::pair<int, int>> corner_votes;         // (3f+k, facet on the left of that edge)
 	{
 		std::map<std::pair<int, int>, std::array<int, 2>> hull_edges;   // (p<q) -> {facet left of p->q, of q->p}
 		for (int t = 0; t < (int) hull.triangles.size(); ++t)
@@ -149,21 +162,33 @@ ConcavityReport measure_concavity(const TriMesh& m, const Topology& topo, const 
 				                                      std::array<int, 2>{-1, -1});
 				it->second[a < b ? 0 : 1] = hull.triangle_facet[t];
 			}
-		PathSearch       search(nv);
-		std::vector<int> path;
+		struct Task
+		{
+			int              p, q, left, right;   // path ends; facets left and right of p->q (-1: not a bridge)
+			std::vector<int> path;
+		};
+		std::vector<Task> tasks;
 		for (const auto& [e, fc] : hull_edges) {
 			if (fc[0] < 0 || fc[1] < 0 || fc[0] == fc[1]) continue;
 			if (!bridge[fc[0]] && !bridge[fc[1]]) continue;
-			path.clear();
-			if (!search.run(m, topo, hull.point_source[e.first], hull.point_source[e.second], path))
-				continue;
-			for (size_t i = 0; i + 1 < path.size(); ++i) {
-				if (bridge[fc[0]]) cut[directed(path[i], path[i + 1])].push_back(fc[0]);
-				if (bridge[fc[1]]) cut[directed(path[i + 1], path[i])].push_back(fc[1]);
-				cut.try_emplace(directed(path[i], path[i + 1]));
-				cut.try_emplace(directed(path[i + 1], path[i]));
-			}
+			tasks.push_back({hull.point_source[e.first], hull.point_source[e.second], bridge[fc[0]] ? fc[0] : -1,
+			                 bridge[fc[1]] ? fc[1] : -1, {}});
 		}
+		// Paths are independent: search them on all cores in chunks, then record them in order.
+		const size_t chunk = 64;
+		parallel_for((tasks.size() + chunk - 1) / chunk, [&](size_t c) {
+			thread_local PathSearch search;
+			search.resize(nv);
+			for (size_t i = c * chunk; i < std::min(tasks.size(), (c + 1) * chunk); ++i)
+				if (!search.run(m, topo, tasks[i].p, tasks[i].q, tasks[i].path)) tasks[i].path.clear();
+		});
+		for (const Task& t : tasks)
+			for (size_t i = 0; i + 1 < t.path.size(); ++i) {
+				const int fwd = topo.corner(t.path[i], t.path[i + 1]), bwd = topo.corner(t.path[i + 1], t.path[i]);
+				on_path[fwd] = on_path[bwd] = 1;
+				if (t.left >= 0) corner_votes.emplace_back(fwd, t.left);
+				if (t.right >= 0) corner_votes.emplace_back(bwd, t.right);
+			}
 	}
 
 	// 4. Patches: pocket faces connected across edges no path uses. Pockets: the same, ignoring paths.
@@ -181,7 +206,7 @@ ConcavityReport measure_concavity(const TriMesh& m, const Topology& topo, const 
                 for (int k = 0; k < 3; ++k) {
                     int g = topo.neighbour[f][k];
                     if (g < 0 || face_facet[g] >= 0 || label[g] >= 0) continue;
-                    if (respect_paths && cut.count(directed(m.F[f][k], m.F[f][(k + 1) % 3]))) continue;
+                    if (respect_paths && on_path[3 * f + k]) continue;
                     label[g] = count;
                     stack.push_back(g);
                 }
@@ -196,16 +221,15 @@ ConcavityReport measure_concavity(const TriMesh& m, const Topology& topo, const 
 	// 5. Each patch belongs to the bridge whose paths bound it from the bridge's side; a patch no path
 	//    bounds (a dimple in a partly covered facet) to the bridges of the hull faces around it.
 	std::vector<std::map<int, double>> votes(r.patches), touch(r.patches);
+	auto edge_length = [&](int c) { return (m.V[m.F[c / 3][c % 3]] - m.V[m.F[c / 3][(c % 3 + 1) % 3]]).norm(); };
+	for (const auto& [c, fct] : corner_votes)
+		if (patch[c / 3] >= 0) votes[patch[c / 3]][fct] += edge_length(c);
 	for (int f = 0; f < nf; ++f) {
 		if (patch[f] < 0) continue;
 		for (int k = 0; k < 3; ++k) {
-			const int    a = m.F[f][k], b = m.F[f][(k + 1) % 3];
-			const int    g = topo.neighbour[f][k];
-			const double len = (m.V[a] - m.V[b]).norm();
-			auto         it  = cut.find(directed(a, b));
-			if (it != cut.end())
-				for (int fct : it->second) votes[patch[f]][fct] += len;
-			if (g >= 0 && face_facet[g] >= 0 && bridge[face_facet[g]]) touch[patch[f]][face_facet[g]] += len;
+			const int g = topo.neighbour[f][k];
+			if (g >= 0 && face_facet[g] >= 0 && bridge[face_facet[g]])
+				touch[patch[f]][face_facet[g]] += edge_length(3 * f + k);
 		}
 	}
 	for (int p = 0; p < r.patches; ++p)
@@ -234,7 +258,7 @@ ConcavityReport measure_concavity(const TriMesh& m, const Topology& topo, const 
 		double      d = 0;
 		int         b = -1;
 		if (patch_bridges[p].empty()) {
-			if (vdist[v] < 0) vdist[v] = hull.distance_to_boundary(x);
+			if (vdist[v] < 0) vdist[v] = hull.distance_to_boundary(x, nullptr, nearest[v]);
 			d = vdist[v];
 		}
 		else {

@@ -7,6 +7,7 @@
 #include <CGAL/Surface_mesh.h>
 #include <CGAL/convex_hull_3.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <numeric>
@@ -100,6 +101,35 @@ ConvexHull::ConvexHull(const std::vector<Vec3>& input)
 		const Point &r = sm.point(sm.target(sm.next(h))), &s = sm.point(sm.target(sm.next(o)));
 		if (CGAL::coplanar(p, q, r, s)) parent[root(parent, fid[f])] = root(parent, fid[g]);
 	}
+	// A sliver (nearly collinear corners, as cut outlines give) has no normal of its own worth the
+	// name: it joins a proper neighbouring facet, whose plane holds it to rounding (across its
+	// longest edge when that neighbour is proper; slivers next to slivers wait for a later pass).
+	double extent = 0;
+	for (const Vec3& p : points) extent = std::max(extent, (p - points[0]).norm());
+	std::vector<char>                                 proper(triangles.size(), 1);
+	std::vector<std::vector<std::pair<double, int>>> across(triangles.size());   // (edge length, face)
+	for (auto f : sm.faces()) {
+		const int t = fid[f];
+		for (auto h : CGAL::halfedges_around_face(sm.halfedge(f), sm))
+			across[t].emplace_back((to_vec(sm.point(sm.target(h))) - to_vec(sm.point(sm.source(h)))).norm(),
+			                       fid[sm.face(sm.opposite(h))]);
+		std::sort(across[t].rbegin(), across[t].rend());
+		const Tri& T = triangles[t];
+		const double area2 = (points[T[1]] - points[T[0]]).cross(points[T[2]] - points[T[0]]).norm();
+		proper[t] = !(area2 <= 1e-10 * extent * across[t][0].first);
+	}
+	for (bool changed = true; changed;) {
+		changed = false;
+		for (int t = 0; t < (int) triangles.size(); ++t) {
+			if (proper[t]) continue;
+			for (const auto& [len, g] : across[t])
+				if (proper[g]) {
+					parent[root(parent, t)] = root(parent, g);
+					proper[t] = changed = true;
+					break;
+				}
+		}
+	}
 	std::unordered_map<int, int> facet_id;
 	triangle_facet.resize(triangles.size());
 	for (int t = 0; t < (int) triangles.size(); ++t) {
@@ -125,6 +155,9 @@ ConvexHull::ConvexHull(const std::vector<Vec3>& input)
 		facet_plane[f].d = facet_plane[f].n.dot(c);
 	}
 	for (const Tri& t : triangles) volume += points[t[0]].dot(points[t[1]].cross(points[t[2]])) / 6.0;
+	point_triangle.assign(points.size(), -1);
+	for (int t = 0; t < (int) triangles.size(); ++t)
+		for (int v : triangles[t]) point_triangle[v] = t;
 
 	tree_ = std::make_unique<Tree>();
 	for (const Tri& t : triangles)
@@ -133,11 +166,15 @@ ConvexHull::ConvexHull(const std::vector<Vec3>& input)
 	tree_->aabb.accelerate_distance_queries();
 }
 
-double ConvexHull::distance_to_boundary(const Vec3& p, int* triangle) const
+double ConvexHull::distance_to_boundary(const Vec3& p, int* triangle, int near) const
 {
-	auto hit = tree_->aabb.closest_point_and_primitive(to_cgal(p));
+	const Point q = to_cgal(p);
+	auto        hit = near < 0 ? tree_->aabb.closest_point_and_primitive(q)
+	                           : tree_->aabb.closest_point_and_primitive(
+	                                 q, std::make_pair(K().construct_projected_point_3_object()(tree_->tris[near], q),
+	                                                   tree_->tris.cbegin() + near));
 	if (triangle) *triangle = (int) (hit.second - tree_->tris.cbegin());
-	return std::sqrt(CGAL::squared_distance(hit.first, to_cgal(p)));
+	return std::sqrt(CGAL::squared_distance(hit.first, q));
 }
 
 double ConvexHull::distance_to_facet(const Vec3& p, int facet) const

@@ -22,10 +22,15 @@ Topology::Topology(const TriMesh& m)
 		}
 	for (int v = 0; v < nv; ++v) adj_start[v + 1] += adj_start[v];
 	adj.resize(adj_start[nv]);
+	adj_corner.resize(adj_start[nv]);
 	std::vector<int> fill(adj_start.begin(), adj_start.end() - 1);
 	// Each undirected edge of a closed manifold appears once in each direction.
 	for (int f = 0; f < nf; ++f)
-		for (int k = 0; k < 3; ++k) adj[fill[m.F[f][k]]++] = m.F[f][(k + 1) % 3];
+		for (int k = 0; k < 3; ++k) {
+			const int i   = fill[m.F[f][k]]++;
+			adj[i]        = m.F[f][(k + 1) % 3];
+			adj_corner[i] = 3 * f + k;
+		}
 }
 
 bool is_reflex(const TriMesh& m, const Topology& t, int f, int k)

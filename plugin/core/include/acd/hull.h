@@ -28,8 +28,10 @@ public:
 	double                        volume = 0;
 
 	int facets() const { return (int) facet_plane.size(); }
-	// Distance from p to the hull's boundary, and the triangle that realises it.
-	double distance_to_boundary(const Vec3& p, int* triangle = nullptr) const;
+	// Distance from p to the hull's boundary, and the triangle that realises it. A triangle `near`
+	// p's nearest one (a mesh neighbour's, say) seeds the search: much faster than none (-1).
+	double distance_to_boundary(const Vec3& p, int* triangle = nullptr, int near = -1) const;
+	std::vector<int> point_triangle;   // a triangle incident to each hull vertex
 	// Distance from p to one facet (a planar convex polygon).
 	double distance_to_facet(const Vec3& p, int facet) const;
 	// Hull as a mesh (vertices = hull vertices).

@@ -9,13 +9,21 @@ struct Topology
 {
 	// neighbour[f][k]: the face across edge (F[f][k], F[f][(k+1)%3]); -1 if none.
 	std::vector<std::array<int, 3>> neighbour;
-	// CSR vertex -> neighbouring vertices.
-	std::vector<int> adj_start, adj;
+	// CSR vertex -> neighbouring vertices; adj_corner[i] = 3f+k of the face f whose edge k runs
+	// from the vertex to adj[i] (each directed edge of a closed manifold is in exactly one face).
+	std::vector<int> adj_start, adj, adj_corner;
 
 	explicit Topology(const TriMesh& m);
 	template <class Fn> void for_each_neighbour(int v, Fn fn) const
 	{
 		for (int i = adj_start[v]; i < adj_start[v + 1]; ++i) fn(adj[i]);
+	}
+	// 3f+k of the directed edge a->b, or -1 if a and b are not neighbours.
+	int corner(int a, int b) const
+	{
+		for (int i = adj_start[a]; i < adj_start[a + 1]; ++i)
+			if (adj[i] == b) return adj_corner[i];
+		return -1;
 	}
 };
 

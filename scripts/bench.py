@@ -1,0 +1,350 @@
+#!/usr/bin/env python3
+"""Benchmark: our decomposition beside CoACD, V-HACD 4 (vhacdx) and CGAL 6.2's voxel ACD.
+
+Every method runs in its own child process on the same OBJ input; its hulls are scored by one
+neutral tool (acd_metrics, C++): hull count, hull error (largest distance from the surface of the
+union of hulls to the input surface, fraction of the bounding-box diagonal), volume IoU with the
+input solid (Monte Carlo, with its standard error). Wall time is the decomposition call alone; peak
+memory is the child's whole-process maximum resident set (os.wait4). For ours also the paper's
+concavity of the parts (the filter's max part concavity, fraction of the diagonal).
+
+    scripts/bench.sh                 whole corpus and the scaling table (about an hour on 2 cores)
+    scripts/bench.sh --quick         the bunny only, no scaling
+    scripts/bench.sh --meshes cow spot --no-scaling
+Writes out/bench/bench.md and out/bench/bench.png.
+"""
+import argparse
+import datetime
+import json
+import math
+import os
+import pathlib
+import platform
+import subprocess
+import sys
+import time
+
+REPO = pathlib.Path(__file__).resolve().parents[1]
+SHARED = REPO.parent / "shared" / "data" / "meshes"
+
+# (method, setting label, parameters). Ours in bisector mode is the fast one; best mode for quality.
+SETTINGS = [
+    ("ours", "tau 5% best", {"tau": 5.0, "cut_plane_selection": "best"}),
+    ("ours", "tau 3% bisector", {"tau": 3.0, "cut_plane_selection": "bisector"}),
+    ("ours", "tau 2% bisector", {"tau": 2.0, "cut_plane_selection": "bisector"}),
+    ("coacd", "threshold 0.05 (default)", {"threshold": 0.05}),
+    ("coacd", "threshold 0.1", {"threshold": 0.1}),
+    ("vhacd4", "resolution 100k", {"resolution": 100000}),
+    ("vhacd4", "resolution 400k (default)", {"resolution": 400000}),
+    ("cgal", "16 volumes (default)", {"max_hulls": 16}),
+    ("cgal", "45 volumes", {"max_hulls": 45}),
+]
+
+
+def build_dir():
+    return pathlib.Path(os.environ["ACD_BUILD_DIR"])
+
+
+def corpus(names):
+    import pymeshlab
+    samples = pathlib.Path(pymeshlab.__file__).parent / "tests" / "sample_meshes"
+    meshes = [samples / n for n in ("bunny.obj", "cow.obj", "bone.ply", "airplane.obj")]
+    if SHARED.is_dir():
+        meshes += sorted(p for p in SHARED.iterdir() if p.suffix in (".obj", ".ply", ".off", ".stl"))
+    out = []
+    for p in meshes:
+        name = ("pymeshlab-" if p.parent == samples else "") + p.stem
+        if names and not any(n in name for n in names):
+            continue
+        out.append((name, p))
+    return out
+
+
+def to_obj(src, dst):
+    """The mesh as plain triangles, what every method gets."""
+    import pymeshlab
+    ms = pymeshlab.MeshSet()
+    ms.load_new_mesh(str(src))
+    ms.save_current_mesh(str(dst), save_vertex_normal=False, save_vertex_color=False,
+                         save_wedge_texcoord=False, save_face_color=False)
+
+
+def face_count(obj):
+    with open(obj) as f:
+        return sum(1 for line in f if line.startswith("f "))
+
+
+def read_obj(path):
+    import numpy as np
+    V, F = [], []
+    for line in open(path):
+        if line.startswith("v "):
+            V.append([float(x) for x in line.split()[1:4]])
+        elif line.startswith("f "):
+            idx = [int(t.split("/")[0]) - 1 for t in line.split()[1:]]
+            F += [[idx[0], idx[k], idx[k + 1]] for k in range(1, len(idx) - 1)]
+    return np.array(V, float), np.array(F, np.int64)
+
+
+def write_hulls(path, hulls):
+    with open(path, "w") as f:
+        base = 1
+        for i, (V, F) in enumerate(hulls):
+            f.write(f"o hull_{i}\n")
+            f.writelines(f"v {x:.17g} {y:.17g} {z:.17g}\n" for x, y, z in V)
+            f.writelines(f"f {a + base} {b + base} {c + base}\n" for a, b, c in F)
+            base += len(V)
+
+
+# ---- one method run, inside a child process ----------------------------------------------------
+def run_child(method, params, inp, hulls_out):
+    params = json.loads(params)
+    info = {}
+    if method == "ours":
+        import pymeshlab
+        import pymeshlab_acd  # noqa: F401  (the installed package; binds the filters)
+        ms = pymeshlab.MeshSet()
+        ms.load_new_mesh(inp)
+        t0 = time.perf_counter()
+        res = ms.generate_approximate_convex_decomposition(output_hulls=True, **params)
+        secs = time.perf_counter() - t0
+        hulls = []
+        for i in range(ms.mesh_number() * 2 + 2):
+            if ms.mesh_id_exists(i) and ms.mesh(i).label().startswith("acd_hull_"):
+                m = ms.mesh(i)
+                hulls.append((m.vertex_matrix(), m.face_matrix()))
+        info["concavity"] = res["max_concavity"]
+        info["bbox_diag"] = ms.mesh(0).bounding_box().diagonal()
+    else:
+        V, F = read_obj(inp)
+        t0 = time.perf_counter()
+        if method == "coacd":
+            import coacd
+            coacd.set_log_level("error")
+            parts = coacd.run_coacd(coacd.Mesh(V, F), **params)
+            hulls = [(p[0], p[1]) for p in parts]
+        elif method == "vhacd4":
+            import numpy as np
+            import vhacdx
+            hulls = vhacdx.compute_vhacd(V, F.astype(np.uint32), **params)
+        else:
+            raise SystemExit("unknown method " + method)
+        secs = time.perf_counter() - t0
+    write_hulls(hulls_out, hulls)
+    info.update(time=secs, hulls=len(hulls))
+    print("RESULT " + json.dumps(info))
+
+
+def run_method(method, params, inp, hulls_out, timeout):
+    if method == "cgal":
+        cmd = [str(build_dir() / "core" / "cgal_acd_peer"), str(inp), str(hulls_out), str(params["max_hulls"])]
+    else:
+        cmd = [sys.executable, __file__, "--child", method, json.dumps(params), str(inp), str(hulls_out)]
+    p = subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    deadline = time.time() + timeout
+    out_chunks = []
+    import selectors
+    sel = selectors.DefaultSelector()
+    sel.register(p.stdout, selectors.EVENT_READ)
+    sel.register(p.stderr, selectors.EVENT_READ)
+    err_chunks = []
+    open_streams = 2
+    while open_streams and time.time() < deadline:
+        for key, _ in sel.select(timeout=1.0):
+            data = key.fileobj.readline()
+            if not data:
+                sel.unregister(key.fileobj)
+                open_streams -= 1
+            elif key.fileobj is p.stdout:
+                out_chunks.append(data)
+            else:
+                err_chunks.append(data)
+    if open_streams:
+        p.kill()
+    _, status, ru = os.wait4(p.pid, 0)
+    p.returncode = status
+    peak_mb = ru.ru_maxrss / 1024.0
+    if open_streams:
+        return {"error": "timeout after %d s" % timeout, "peak_mb": peak_mb}
+    out = "".join(out_chunks)
+    if method == "cgal":
+        words = out.split()
+        if len(words) >= 4 and words[0] == "hulls":
+            return {"hulls": int(words[1]), "time": float(words[3]), "peak_mb": peak_mb}
+        return {"error": (out + "".join(err_chunks)).strip()[-300:], "peak_mb": peak_mb}
+    for line in out.splitlines():
+        if line.startswith("RESULT "):
+            r = json.loads(line[7:])
+            r["peak_mb"] = peak_mb
+            return r
+    msg = "".join(err_chunks).strip().splitlines()
+    return {"error": (msg[-1] if msg else "exit status %d" % status)[:300], "peak_mb": peak_mb}
+
+
+def metrics(inp, hulls, samples):
+    r = subprocess.run([str(build_dir() / "core" / "acd_metrics"), str(inp), str(hulls), str(samples)],
+                       capture_output=True, text=True, timeout=1800)
+    try:
+        return json.loads(r.stdout)
+    except ValueError:
+        return {"error": (r.stdout + r.stderr).strip()[-300:]}
+
+
+def fmt(x, spec):
+    return "n/a" if x is None else format(x, spec)
+
+
+def bench_corpus(args, outdir):
+    rows = []
+    inputs = outdir / "inputs"
+    inputs.mkdir(parents=True, exist_ok=True)
+    for name, src in corpus(args.meshes):
+        inp = inputs / (name + ".obj")
+        if not inp.exists():
+            to_obj(src, inp)
+        faces = face_count(inp)
+        for method, label, params in SETTINGS:
+            hulls = outdir / "hulls" / f"{name}__{method}__{label.split()[0]}{label.split()[1]}.obj"
+            hulls.parent.mkdir(exist_ok=True)
+            r = run_method(method, params, inp, hulls, args.timeout)
+            if "error" not in r:
+                r.update(metrics(inp, hulls, args.samples))
+            row = dict(mesh=name, faces=faces, method=method, setting=label, **r)
+            rows.append(row)
+            print(row_line(row), flush=True)
+    return rows
+
+
+def row_line(r):
+    if "error" in r:
+        return f"| {r['mesh']} | {r['faces']} | {r['method']} | {r['setting']} | error: {r['error'][:80]} | | | | | |"
+    conc = r.get("concavity")
+    conc = fmt(100 * conc / r["bbox_diag"], ".2f") if conc is not None else ""
+    iou = "n/a" if r.get("iou") is None else f"{r['iou']:.3f} ± {r['iou_stderr']:.3f}"
+    return (f"| {r['mesh']} | {r['faces']} | {r['method']} | {r['setting']} | {r['hulls']} | "
+            f"{100 * r['hull_error']:.2f} | {iou} | {r['time']:.2f} | {r['peak_mb']:.0f} | {conc} |")
+
+
+HEADER = ("| mesh | faces | method | setting | hulls | hull error (% diag) | volume IoU | time (s) | "
+          "peak memory (MB) | part concavity (% diag) |\n|---|---|---|---|---|---|---|---|---|---|")
+
+
+def plot(rows, path):
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    meshes = list(dict.fromkeys(r["mesh"] for r in rows))
+    cols = min(4, len(meshes))
+    nrows = math.ceil(len(meshes) / cols)
+    fig, axes = plt.subplots(nrows, cols, figsize=(4.2 * cols, 3.4 * nrows), squeeze=False)
+    markers = {"ours": "o", "coacd": "s", "vhacd4": "^", "cgal": "D"}
+    colors = plt.cm.tab10.colors
+    keys = [(m, l) for m, l, _ in SETTINGS]
+    for ax, mesh in zip(axes.flat, meshes):
+        for r in rows:
+            if r["mesh"] != mesh or "error" in r:
+                continue
+            k = keys.index((r["method"], r["setting"]))
+            ax.scatter(r["hulls"], 100 * r["hull_error"], marker=markers[r["method"]], color=colors[k % 10],
+                       s=45, label=f"{r['method']} {r['setting']}")
+        ax.set_title(mesh, fontsize=9)
+        ax.set_xlabel("hulls")
+        ax.set_ylabel("hull error (% diag)")
+        ax.set_xscale("log")
+    for ax in list(axes.flat)[len(meshes):]:
+        ax.axis("off")
+    handles, labels = [], []
+    for ax in axes.flat:
+        for h, l in zip(*ax.get_legend_handles_labels()):
+            if l not in labels:
+                handles.append(h)
+                labels.append(l)
+    fig.legend(handles, labels, loc="lower center", ncol=3, fontsize=8)
+    fig.tight_layout(rect=(0, 0.06 + 0.02 * nrows / 2, 1, 1))
+    fig.savefig(path, dpi=110)
+
+
+def scaling(args, outdir):
+    """Our filter at growing face counts of one shape (igea, or the bunny without the shared data)."""
+    import pymeshlab
+    src = SHARED / "igea.ply"
+    if not src.exists():
+        src = pathlib.Path(pymeshlab.__file__).parent / "tests" / "sample_meshes" / "bunny.obj"
+    sdir = outdir / "scaling"
+    sdir.mkdir(parents=True, exist_ok=True)
+    ms = pymeshlab.MeshSet()
+    ms.load_new_mesh(str(src))
+    n0 = ms.current_mesh().face_number()
+    targets = [10000, 50000, 100000, n0, 4 * n0]
+    paths = []
+    for t in targets:
+        p = sdir / f"{src.stem}_{t}.obj"
+        if not p.exists():
+            ms = pymeshlab.MeshSet()
+            ms.load_new_mesh(str(src))
+            if t < n0:
+                ms.meshing_decimation_quadric_edge_collapse(targetfacenum=t, preservetopology=True)
+            elif t > n0:   # midpoint subdivision: 4x the faces, same shape
+                ms.meshing_surface_subdivision_midpoint(iterations=1, threshold=pymeshlab.PercentageValue(0))
+            ms.save_current_mesh(str(p), save_vertex_normal=False, save_vertex_color=False,
+                                 save_wedge_texcoord=False, save_face_color=False)
+        paths.append(p)
+    rows = []
+    for p in paths:
+        faces = face_count(p)
+        r = run_method("ours", {"tau": 3.0, "cut_plane_selection": "bisector"}, p, sdir / "hulls.obj", args.timeout)
+        r["faces"] = faces
+        rows.append(r)
+        print(f"| {faces} | {r.get('hulls', 'n/a')} | {fmt(r.get('time'), '.2f')} | {r['peak_mb']:.0f} |"
+              + (f" {r['error']}" if "error" in r else ""), flush=True)
+    ok = [r for r in rows if "error" not in r and r["time"] > 0]
+    exp = None
+    if len(ok) >= 2:
+        xs = [math.log(r["faces"]) for r in ok]
+        ys = [math.log(r["time"]) for r in ok]
+        mx, my = sum(xs) / len(xs), sum(ys) / len(ys)
+        exp = sum((x - mx) * (y - my) for x, y in zip(xs, ys)) / sum((x - mx) ** 2 for x in xs)
+    return src.stem, rows, exp
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--child", nargs=4, metavar=("METHOD", "PARAMS", "INPUT", "HULLS"), help=argparse.SUPPRESS)
+    ap.add_argument("--quick", action="store_true", help="bunny only, no scaling table")
+    ap.add_argument("--meshes", nargs="*", help="substrings of mesh names to keep")
+    ap.add_argument("--no-scaling", action="store_true")
+    ap.add_argument("--samples", type=int, default=200000, help="Monte Carlo samples per metric")
+    ap.add_argument("--timeout", type=int, default=900, help="seconds per method run")
+    ap.add_argument("--out", default=str(REPO / "out" / "bench"))
+    args = ap.parse_args()
+    if args.child:
+        return run_child(*args.child)
+    if args.quick:
+        args.meshes, args.no_scaling = ["pymeshlab-bunny"], True
+    outdir = pathlib.Path(args.out)
+    outdir.mkdir(parents=True, exist_ok=True)
+    cpu = next((l.split(":", 1)[1].strip() for l in open("/proc/cpuinfo") if l.startswith("model name")), "?")
+    machine = f"{platform.system()} {platform.release()}, {os.cpu_count()} cores ({cpu}), " \
+              f"{os.sysconf('SC_PAGE_SIZE') * os.sysconf('SC_PHYS_PAGES') / 2**30:.0f} GiB"
+    started = datetime.datetime.now().strftime("%Y-%m-%d %H:%M")
+    print(HEADER, flush=True)
+    rows = bench_corpus(args, outdir)
+    plot(rows, outdir / "bench.png")
+    md = [f"Benchmark of {started} on {machine}.", "", "Command: `scripts/bench.sh " + " ".join(sys.argv[1:]) + "`",
+          "", HEADER] + [row_line(r) for r in rows]
+    if not args.no_scaling:
+        print("\n| faces | parts | time (s) | peak memory (MB) |\n|---|---|---|---|", flush=True)
+        shape, srows, exp = scaling(args, outdir)
+        md += ["", f"Scaling of our filter (tau 3%, bisector) on {shape} decimated / as is / midpoint-subdivided:", "",
+               "| faces | parts | time (s) | peak memory (MB) |", "|---|---|---|---|"]
+        md += [f"| {r['faces']} | {r.get('hulls', 'n/a')} | {fmt(r.get('time'), '.2f')} | {r['peak_mb']:.0f} |"
+               + (f" {r['error']} |" if "error" in r else "") for r in srows]
+        md += ["", "Fitted exponent (time ~ faces^k): k = " + fmt(exp, ".2f")]
+    (outdir / "bench.md").write_text("\n".join(md) + "\n")
+    json.dump(rows, open(outdir / "bench.json", "w"), indent=1)
+    print("\n".join(md[-12:]) if not args.no_scaling else "")
+    print(f"[bench] {outdir / 'bench.md'} and {outdir / 'bench.png'}")
+
+
+if __name__ == "__main__":
+    sys.exit(main())
