@@ -118,6 +118,12 @@ ConvexHull::ConvexHull(const std::vector<Vec3>& input)
 		const double area2 = (points[T[1]] - points[T[0]]).cross(points[T[2]] - points[T[0]]).norm();
 		proper[t] = !(area2 <= 1e-10 * extent * across[t][0].first);
 	}
+	// A sliver exactly coplanar with proper triangles already has their facet's normal.
+	std::vector<char> root_proper(triangles.size(), 0);
+	for (int t = 0; t < (int) triangles.size(); ++t)
+		if (proper[t]) root_proper[root(parent, t)] = 1;
+	for (int t = 0; t < (int) triangles.size(); ++t)
+		if (root_proper[root(parent, t)]) proper[t] = 1;
 	for (bool changed = true; changed;) {
 		changed = false;
 		for (int t = 0; t < (int) triangles.size(); ++t) {

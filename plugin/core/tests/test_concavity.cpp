@@ -62,3 +62,26 @@ ACD_TEST(bad_input_is_refused_with_a_reason)
 	nan.V[0].x() = std::nan("");
 	CHECK(refused(nan, "NaN"));
 }
+
+// Cut outlines put nearly collinear points on hulls; the sliver triangles between them have
+// rounding-noise normals. Every facet plane must still bound the hull (a bogus plane made
+// points deep inside look outside, and bridges far away look near).
+ACD_TEST(hull_facets_bound_the_hull_despite_slivers)
+{
+	std::vector<acd::Vec3> pts;
+	for (double z : {0.0, 1.0}) {
+		pts.emplace_back(0, -1, z);
+		pts.emplace_back(1, -1, z);
+		pts.emplace_back(0, 0, z);
+		pts.emplace_back(1, 0, z);
+		for (int i = 1; i < 40; ++i) {   // bulging out of the face y = 0 by ~1e-15: strictly convex, barely
+			const double t = i / 40.0;
+			pts.emplace_back(t, 4e-15 * t * (1 - t), z);
+		}
+	}
+	acd::ConvexHull h(pts);
+	double worst = 0;
+	for (int f = 0; f < h.facets(); ++f)
+		for (const acd::Vec3& p : pts) worst = std::max(worst, h.facet_plane[f].eval(p));
+	CHECK(worst < 1e-9);
+}
