@@ -22,6 +22,7 @@ import pathlib
 import platform
 import subprocess
 import sys
+import textwrap
 import time
 
 REPO = pathlib.Path(__file__).resolve().parents[1]
@@ -46,16 +47,25 @@ def build_dir():
 
 
 def corpus(names):
+    """pymeshlab's bunny, cow, bone and airplane and the shared meshes, closed and manifold ones
+    only (all methods get the same solid; ours refuses open input), each shape once."""
     import pymeshlab
     samples = pathlib.Path(pymeshlab.__file__).parent / "tests" / "sample_meshes"
     meshes = [samples / n for n in ("bunny.obj", "cow.obj", "bone.ply", "airplane.obj")]
     if SHARED.is_dir():
         meshes += sorted(p for p in SHARED.iterdir() if p.suffix in (".obj", ".ply", ".off", ".stl"))
-    out = []
+    out, seen = [], set()
     for p in meshes:
         name = ("pymeshlab-" if p.parent == samples else "") + p.stem
-        if names and not any(n in name for n in names):
+        if p.stem in seen or (names and not any(n in name for n in names)):
             continue
+        ms = pymeshlab.MeshSet()
+        ms.load_new_mesh(str(p))
+        t = ms.get_topological_measures()
+        if t["boundary_edges"] or t["non_two_manifold_edges"]:
+            print(f"[bench] skipping {name}: not a closed manifold solid", flush=True)
+            continue
+        seen.add(p.stem)
         out.append((name, p))
     return out
 
@@ -272,22 +282,28 @@ def scaling(args, outdir):
         src = pathlib.Path(pymeshlab.__file__).parent / "tests" / "sample_meshes" / "bunny.obj"
     sdir = outdir / "scaling"
     sdir.mkdir(parents=True, exist_ok=True)
-    ms = pymeshlab.MeshSet()
-    ms.load_new_mesh(str(src))
-    n0 = ms.current_mesh().face_number()
+    # Meshes are made in a child: a child forked from a big parent would report the parent's memory.
+    make = textwrap.dedent("""
+        import sys, pymeshlab
+        src, n0, t, out = sys.argv[1], int(sys.argv[2]), int(sys.argv[3]), sys.argv[4]
+        ms = pymeshlab.MeshSet()
+        ms.load_new_mesh(src)
+        if t < n0:
+            ms.meshing_decimation_quadric_edge_collapse(targetfacenum=t, preservetopology=True)
+        elif t > n0:   # midpoint subdivision: 4x the faces, same shape
+            ms.meshing_surface_subdivision_midpoint(iterations=1, threshold=pymeshlab.PercentageValue(0))
+        ms.save_current_mesh(out, save_vertex_normal=False, save_vertex_color=False,
+                             save_wedge_texcoord=False, save_face_color=False)
+        print(ms.current_mesh().face_number() if t == 0 else "")
+    """)
+    n0 = int(subprocess.run([sys.executable, "-c", make, str(src), "0", "0", str(sdir / "original.obj")],
+                            check=True, capture_output=True, text=True).stdout)
     targets = [10000, 50000, 100000, n0, 4 * n0]
     paths = []
     for t in targets:
         p = sdir / f"{src.stem}_{t}.obj"
         if not p.exists():
-            ms = pymeshlab.MeshSet()
-            ms.load_new_mesh(str(src))
-            if t < n0:
-                ms.meshing_decimation_quadric_edge_collapse(targetfacenum=t, preservetopology=True)
-            elif t > n0:   # midpoint subdivision: 4x the faces, same shape
-                ms.meshing_surface_subdivision_midpoint(iterations=1, threshold=pymeshlab.PercentageValue(0))
-            ms.save_current_mesh(str(p), save_vertex_normal=False, save_vertex_color=False,
-                                 save_wedge_texcoord=False, save_face_color=False)
+            subprocess.run([sys.executable, "-c", make, str(src), str(n0), str(t), str(p)], check=True)
         paths.append(p)
     rows = []
     for p in paths:
@@ -313,6 +329,7 @@ def main():
     ap.add_argument("--quick", action="store_true", help="bunny only, no scaling table")
     ap.add_argument("--meshes", nargs="*", help="substrings of mesh names to keep")
     ap.add_argument("--no-scaling", action="store_true")
+    ap.add_argument("--scaling-only", action="store_true")
     ap.add_argument("--samples", type=int, default=200000, help="Monte Carlo samples per metric")
     ap.add_argument("--timeout", type=int, default=900, help="seconds per method run")
     ap.add_argument("--out", default=str(REPO / "out" / "bench"))
@@ -327,6 +344,11 @@ def main():
     machine = f"{platform.system()} {platform.release()}, {os.cpu_count()} cores ({cpu}), " \
               f"{os.sysconf('SC_PAGE_SIZE') * os.sysconf('SC_PHYS_PAGES') / 2**30:.0f} GiB"
     started = datetime.datetime.now().strftime("%Y-%m-%d %H:%M")
+    if args.scaling_only:
+        print("| faces | parts | time (s) | peak memory (MB) |\n|---|---|---|---|", flush=True)
+        shape, srows, exp = scaling(args, outdir)
+        print("Fitted exponent (time ~ faces^k): k = " + fmt(exp, ".2f"))
+        return
     print(HEADER, flush=True)
     rows = bench_corpus(args, outdir)
     plot(rows, outdir / "bench.png")
