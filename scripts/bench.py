@@ -5,7 +5,7 @@ Every method runs in its own child process on the same OBJ input; its hulls are 
 neutral tool (acd_metrics, C++): hull count, hull error (largest distance from the surface of the
 union of hulls to the input surface, fraction of the bounding-box diagonal), volume IoU with the
 input solid (Monte Carlo, with its standard error). Wall time is the decomposition call alone; peak
-memory is the child's whole-process maximum resident set (os.wait4). For ours also the paper's
+memory is the child's whole-process peak resident set (its VmHWM). For ours also the paper's
 concavity of the parts (the filter's max part concavity, fraction of the diagonal).
 
     scripts/bench.sh                 whole corpus and the scaling table (about an hour on 2 cores)
@@ -141,8 +141,17 @@ def run_child(method, params, inp, hulls_out):
             raise SystemExit("unknown method " + method)
         secs = time.perf_counter() - t0
     write_hulls(hulls_out, hulls)
-    info.update(time=secs, hulls=len(hulls))
+    info.update(time=secs, hulls=len(hulls), peak_mb=peak_rss_mb())
     print("RESULT " + json.dumps(info))
+
+
+def peak_rss_mb():
+    """This process's own peak resident set (VmHWM starts afresh at exec, unlike ru_maxrss, which
+    keeps the forking parent's size)."""
+    for line in open("/proc/self/status"):
+        if line.startswith("VmHWM:"):
+            return int(line.split()[1]) / 1024.0
+    return None
 
 
 def run_method(method, params, inp, hulls_out, timeout):
@@ -171,24 +180,21 @@ def run_method(method, params, inp, hulls_out, timeout):
                 err_chunks.append(data)
     if open_streams:
         p.kill()
-    _, status, ru = os.wait4(p.pid, 0)
+    _, status, _ = os.wait4(p.pid, 0)
     p.returncode = status
-    peak_mb = ru.ru_maxrss / 1024.0
     if open_streams:
-        return {"error": "timeout after %d s" % timeout, "peak_mb": peak_mb}
+        return {"error": "timeout after %d s" % timeout}
     out = "".join(out_chunks)
     if method == "cgal":
         words = out.split()
-        if len(words) >= 4 and words[0] == "hulls":
-            return {"hulls": int(words[1]), "time": float(words[3]), "peak_mb": peak_mb}
-        return {"error": (out + "".join(err_chunks)).strip()[-300:], "peak_mb": peak_mb}
+        if len(words) >= 6 and words[0] == "hulls":
+            return {"hulls": int(words[1]), "time": float(words[3]), "peak_mb": float(words[5]) / 1024.0}
+        return {"error": (out + "".join(err_chunks)).strip()[-300:]}
     for line in out.splitlines():
         if line.startswith("RESULT "):
-            r = json.loads(line[7:])
-            r["peak_mb"] = peak_mb
-            return r
+            return json.loads(line[7:])
     msg = "".join(err_chunks).strip().splitlines()
-    return {"error": (msg[-1] if msg else "exit status %d" % status)[:300], "peak_mb": peak_mb}
+    return {"error": (msg[-1] if msg else "exit status %d" % status)[:300]}
 
 
 def metrics(inp, hulls, samples):
@@ -311,7 +317,7 @@ def scaling(args, outdir):
         r = run_method("ours", {"tau": 3.0, "cut_plane_selection": "bisector"}, p, sdir / "hulls.obj", args.timeout)
         r["faces"] = faces
         rows.append(r)
-        print(f"| {faces} | {r.get('hulls', 'n/a')} | {fmt(r.get('time'), '.2f')} | {r['peak_mb']:.0f} |"
+        print(f"| {faces} | {r.get('hulls', 'n/a')} | {fmt(r.get('time'), '.2f')} | {fmt(r.get('peak_mb'), '.0f')} |"
               + (f" {r['error']}" if "error" in r else ""), flush=True)
     ok = [r for r in rows if "error" not in r and r["time"] > 0]
     exp = None
@@ -359,7 +365,7 @@ def main():
         shape, srows, exp = scaling(args, outdir)
         md += ["", f"Scaling of our filter (tau 3%, bisector) on {shape} decimated / as is / midpoint-subdivided:", "",
                "| faces | parts | time (s) | peak memory (MB) |", "|---|---|---|---|"]
-        md += [f"| {r['faces']} | {r.get('hulls', 'n/a')} | {fmt(r.get('time'), '.2f')} | {r['peak_mb']:.0f} |"
+        md += [f"| {r['faces']} | {r.get('hulls', 'n/a')} | {fmt(r.get('time'), '.2f')} | {fmt(r.get('peak_mb'), '.0f')} |"
                + (f" {r['error']} |" if "error" in r else "") for r in srows]
         md += ["", "Fitted exponent (time ~ faces^k): k = " + fmt(exp, ".2f")]
     (outdir / "bench.md").write_text("\n".join(md) + "\n")

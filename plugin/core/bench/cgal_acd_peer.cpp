@@ -1,6 +1,7 @@
 // Peer for the benchmark: CGAL 6.2's voxel-based approximate_convex_decomposition() (V-HACD-like).
 //   cgal_acd_peer input.obj hulls_out.obj max_hulls
-// Prints "hulls N time S" (the decomposition alone, not file input/output).
+// Prints "hulls N time S peak_kb K" (time: the decomposition alone; K: this process's peak
+// resident set, VmHWM).
 #include "obj_io.h"
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
@@ -8,6 +9,8 @@
 #include <CGAL/approximate_convex_decomposition.h>
 
 #include <chrono>
+#include <fstream>
+#include <string>
 #include <cstdio>
 
 int main(int argc, char** argv)
@@ -39,7 +42,11 @@ int main(int argc, char** argv)
 			hulls.push_back(std::move(h));
 		}
 		acd::bench::write_obj_objects(argv[2], hulls);
-		std::printf("hulls %zu time %.4f\n", hulls.size(), secs);
+		long          peak_kb = 0;
+		std::ifstream status("/proc/self/status");
+		for (std::string line; std::getline(status, line);)
+			if (line.rfind("VmHWM:", 0) == 0) peak_kb = std::atol(line.c_str() + 6);
+		std::printf("hulls %zu time %.4f peak_kb %ld\n", hulls.size(), secs, peak_kb);
 	}
 	catch (const std::exception& e) {
 		std::printf("error: %s\n", e.what());
