@@ -1,10 +1,15 @@
 #!/usr/bin/env bash
-# Benchmark against CoACD, V-HACD 4 and CGAL's ACD (see scripts/bench.py --help). Installs what it
-# needs on top of scripts/setup.sh: the peers from PyPI and the C++ metric/peer tools.
+# Benchmark against CoACD, V-HACD 4 and CGAL's ACD (see scripts/bench.py --help); with --rotation,
+# the pose-dependence table instead (scripts/bench_rotation.py). Installs what it needs on top of
+# scripts/setup.sh: the peers from PyPI and the C++ metric/peer tools.
 set -euo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
 bash "$here/setup.sh"
 source "$here/env.sh"
 python3 -m pip install -q "coacd==1.0.14" "vhacdx==0.1.1" "matplotlib>=3.7" 2>&1 | grep -v "running pip as the 'root'" || true
 cmake --build "$ACD_BUILD_DIR" --target acd_metrics cgal_acd_peer -- -j"$(nproc)" >/dev/null
+if [ "${1:-}" = "--rotation" ]; then
+	shift
+	exec python3 "$here/bench_rotation.py" "$@"
+fi
 exec python3 "$here/bench.py" "$@"

@@ -1,25 +1,13 @@
 #include "acd/topology.h"
 
-#include <unordered_map>
-
 namespace acd {
 
 Topology::Topology(const TriMesh& m)
 {
 	const int nf = (int) m.F.size(), nv = (int) m.V.size();
-	std::unordered_map<long long, int> half;   // directed edge -> face
-	half.reserve(nf * 3);
-	auto key = [](int a, int b) { return (static_cast<long long>(a) << 32) | static_cast<unsigned>(b); };
-	for (int f = 0; f < nf; ++f)
-		for (int k = 0; k < 3; ++k) half[key(m.F[f][k], m.F[f][(k + 1) % 3])] = f;
-	neighbour.assign(nf, {-1, -1, -1});
 	adj_start.assign(nv + 1, 0);
-	for (int f = 0; f < nf; ++f)
-		for (int k = 0; k < 3; ++k) {
-			auto it = half.find(key(m.F[f][(k + 1) % 3], m.F[f][k]));
-			if (it != half.end()) neighbour[f][k] = it->second;
-			++adj_start[m.F[f][k] + 1];
-		}
+	for (const Tri& t : m.F)
+		for (int v : t) ++adj_start[v + 1];
 	for (int v = 0; v < nv; ++v) adj_start[v + 1] += adj_start[v];
 	adj.resize(adj_start[nv]);
 	adj_corner.resize(adj_start[nv]);
@@ -30,6 +18,13 @@ Topology::Topology(const TriMesh& m)
 			const int i   = fill[m.F[f][k]]++;
 			adj[i]        = m.F[f][(k + 1) % 3];
 			adj_corner[i] = 3 * f + k;
+		}
+	// The face across edge a->b holds b->a: found in b's short list, no hashing.
+	neighbour.assign(nf, {-1, -1, -1});
+	for (int f = 0; f < nf; ++f)
+		for (int k = 0; k < 3; ++k) {
+			const int c = corner(m.F[f][(k + 1) % 3], m.F[f][k]);
+			if (c >= 0) neighbour[f][k] = c / 3;
 		}
 }
 
