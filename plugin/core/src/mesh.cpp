@@ -53,23 +53,40 @@ double bbox_diagonal(const std::vector<Vec3>& pts)
 
 std::vector<int> face_components(const TriMesh& m, int* count)
 {
-	std::vector<int> parent(m.F.size());
-	std::iota(parent.begin(), parent.end(), 0);
-	std::unordered_map<EdgeKey, int, EdgeHash> first;
-	first.reserve(m.F.size() * 2);
-	for (int f = 0; f < (int) m.F.size(); ++f)
+	// Faces sharing an edge, in either direction, are joined. Each vertex lists the edges leaving it
+	// (CSR), so the faces on an edge are found in two short lists instead of a hash map.
+	const int        nf = (int) m.F.size(), nv = (int) m.V.size();
+	std::vector<int> start(nv + 1, 0), to, face;
+	for (const Tri& t : m.F)
+		for (int v : t) ++start[v + 1];
+	for (int v = 0; v < nv; ++v) start[v + 1] += start[v];
+	to.resize(start[nv]);
+	face.resize(start[nv]);
+	std::vector<int> fill(start.begin(), start.end() - 1);
+	for (int f = 0; f < nf; ++f)
 		for (int k = 0; k < 3; ++k) {
-			int a = m.F[f][k], b = m.F[f][(k + 1) % 3];
-			auto [it, fresh] = first.emplace(EdgeKey{std::min(a, b), std::max(a, b)}, f);
-			if (!fresh) parent[find_root(parent, f)] = find_root(parent, it->second);
+			const int i = fill[m.F[f][k]]++;
+			to[i]       = m.F[f][(k + 1) % 3];
+			face[i]     = f;
 		}
-	std::vector<int> comp(m.F.size(), -1);
-	std::unordered_map<int, int> ids;
-	for (int f = 0; f < (int) m.F.size(); ++f) {
-		auto [it, fresh] = ids.emplace(find_root(parent, f), (int) ids.size());
-		comp[f] = it->second;
+	std::vector<int> parent(nf);
+	std::iota(parent.begin(), parent.end(), 0);
+	for (int f = 0; f < nf; ++f)
+		for (int k = 0; k < 3; ++k) {
+			const int a = m.F[f][k], b = m.F[f][(k + 1) % 3];
+			for (int i = start[b]; i < start[b + 1]; ++i)   // b->a: the usual neighbour
+				if (to[i] == a) parent[find_root(parent, f)] = find_root(parent, face[i]);
+			for (int i = start[a]; i < start[a + 1]; ++i)   // a->b again: a misoriented or non-manifold edge
+				if (to[i] == b) parent[find_root(parent, f)] = find_root(parent, face[i]);
+		}
+	std::vector<int> comp(nf, -1), id(nf, -1);
+	int              n = 0;
+	for (int f = 0; f < nf; ++f) {
+		int& r  = id[find_root(parent, f)];
+		if (r < 0) r = n++;
+		comp[f] = r;
 	}
-	if (count) *count = (int) ids.size();
+	if (count) *count = n;
 	return comp;
 }
 
