@@ -1,4 +1,5 @@
 #include "acd/mesh.h"
+#include "acd/topology.h"
 
 #include <algorithm>
 #include <cmath>
@@ -53,31 +54,19 @@ double bbox_diagonal(const std::vector<Vec3>& pts)
 
 std::vector<int> face_components(const TriMesh& m, int* count)
 {
-	// Faces sharing an edge, in either direction, are joined. Each vertex lists the edges leaving it
-	// (CSR), so the faces on an edge are found in two short lists instead of a hash map.
-	const int        nf = (int) m.F.size(), nv = (int) m.V.size();
-	std::vector<int> start(nv + 1, 0), to, face;
-	for (const Tri& t : m.F)
-		for (int v : t) ++start[v + 1];
-	for (int v = 0; v < nv; ++v) start[v + 1] += start[v];
-	to.resize(start[nv]);
-	face.resize(start[nv]);
-	std::vector<int> fill(start.begin(), start.end() - 1);
-	for (int f = 0; f < nf; ++f)
-		for (int k = 0; k < 3; ++k) {
-			const int i = fill[m.F[f][k]]++;
-			to[i]       = m.F[f][(k + 1) % 3];
-			face[i]     = f;
-		}
+	// Faces sharing an edge, in either direction, are joined: the faces on an edge are found in the
+	// two endpoints' short edge lists, no hash map.
+	const Topology   t(m);
+	const int        nf = (int) m.F.size();
 	std::vector<int> parent(nf);
 	std::iota(parent.begin(), parent.end(), 0);
 	for (int f = 0; f < nf; ++f)
 		for (int k = 0; k < 3; ++k) {
 			const int a = m.F[f][k], b = m.F[f][(k + 1) % 3];
-			for (int i = start[b]; i < start[b + 1]; ++i)   // b->a: the usual neighbour
-				if (to[i] == a) parent[find_root(parent, f)] = find_root(parent, face[i]);
-			for (int i = start[a]; i < start[a + 1]; ++i)   // a->b again: a misoriented or non-manifold edge
-				if (to[i] == b) parent[find_root(parent, f)] = find_root(parent, face[i]);
+			for (int i = t.adj_start[b]; i < t.adj_start[b + 1]; ++i)   // b->a: the usual neighbour
+				if (t.adj[i] == a) parent[find_root(parent, f)] = find_root(parent, t.adj_corner[i] / 3);
+			for (int i = t.adj_start[a]; i < t.adj_start[a + 1]; ++i)   // a->b again: misoriented or non-manifold
+				if (t.adj[i] == b) parent[find_root(parent, f)] = find_root(parent, t.adj_corner[i] / 3);
 		}
 	std::vector<int> comp(nf, -1), id(nf, -1);
 	int              n = 0;
