@@ -159,42 +159,21 @@ def run_method(method, params, inp, hulls_out, timeout):
         cmd = [str(build_dir() / "core" / "cgal_acd_peer"), str(inp), str(hulls_out), str(params["max_hulls"])]
     else:
         cmd = [sys.executable, __file__, "--child", method, json.dumps(params), str(inp), str(hulls_out)]
-    p = subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
-    deadline = time.time() + timeout
-    out_chunks = []
-    import selectors
-    sel = selectors.DefaultSelector()
-    sel.register(p.stdout, selectors.EVENT_READ)
-    sel.register(p.stderr, selectors.EVENT_READ)
-    err_chunks = []
-    open_streams = 2
-    while open_streams and time.time() < deadline:
-        for key, _ in sel.select(timeout=1.0):
-            data = key.fileobj.readline()
-            if not data:
-                sel.unregister(key.fileobj)
-                open_streams -= 1
-            elif key.fileobj is p.stdout:
-                out_chunks.append(data)
-            else:
-                err_chunks.append(data)
-    if open_streams:
-        p.kill()
-    _, status, _ = os.wait4(p.pid, 0)
-    p.returncode = status
-    if open_streams:
+    try:
+        r = subprocess.run(cmd, capture_output=True, text=True, timeout=timeout)
+    except subprocess.TimeoutExpired:
         return {"error": "timeout after %d s" % timeout}
-    out = "".join(out_chunks)
+    out = r.stdout
     if method == "cgal":
         words = out.split()
         if len(words) >= 6 and words[0] == "hulls":
             return {"hulls": int(words[1]), "time": float(words[3]), "peak_mb": float(words[5]) / 1024.0}
-        return {"error": (out + "".join(err_chunks)).strip()[-300:]}
+        return {"error": (out + r.stderr).strip()[-300:]}
     for line in out.splitlines():
         if line.startswith("RESULT "):
             return json.loads(line[7:])
-    msg = "".join(err_chunks).strip().splitlines()
-    return {"error": (msg[-1] if msg else "exit status %d" % status)[:300]}
+    msg = r.stderr.strip().splitlines()
+    return {"error": (msg[-1] if msg else "exit status %d" % r.returncode)[:300]}
 
 
 def metrics(inp, hulls, samples):

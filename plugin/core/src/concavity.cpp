@@ -4,8 +4,6 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
-#include <queue>
-#include <unordered_map>
 #include <vector>
 
 namespace acd {

@@ -7,9 +7,6 @@
 #include <CGAL/Simple_cartesian.h>
 
 #include <algorithm>
-#include <atomic>
-#include <mutex>
-#include <thread>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -44,9 +41,7 @@ struct Measured
 // A candidate cut's parts scored by the paper's measure itself (the same one the recursion uses).
 double part_concavity(const TriMesh& m)
 {
-	Topology   t(m);
-	ConvexHull h(m.V);
-	return measure_concavity(m, t, h).max_concavity;
+	return Measured(m).rep.max_concavity;
 }
 
 Plane through(const Vec3& p, Vec3 n)
