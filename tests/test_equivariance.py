@@ -13,11 +13,6 @@ import pytest
 import pymeshlab_acd
 from conftest import BUNNY, SHARED, add_mesh, volume
 
-# Known gap (issue 13, open): rounding-level differences (near-tied notches, exactly-coplanar tests
-# on rotated coordinates, order-dependent tie-breaks) still change some cuts, so every check here
-# fails today. strict: the day one passes, this marker must go.
-pytestmark = pytest.mark.xfail(strict=True, reason="issue 13: decomposition not yet pose/order invariant")
-
 TAU = 5.0                     # percent of the enclosing-sphere diameter (rotation invariant)
 SELECTION = "bisector"
 ROTATIONS = 10

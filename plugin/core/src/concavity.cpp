@@ -77,7 +77,7 @@ ConcavityReport measure_concavity(const TriMesh& m, const Topology& topo, const 
 {
 	const int    nf   = (int) m.F.size();
 	const int    nv   = (int) m.V.size();
-	const double diag = bbox_diagonal(hull.points);
+	const double diag = extent(hull.points);
 	const double eps  = 1e-9 * diag;
 
 	ConcavityReport r;
@@ -132,8 +132,9 @@ ConcavityReport measure_concavity(const TriMesh& m, const Topology& topo, const 
 		if (!on_hull(t[0]) || !on_hull(t[1]) || !on_hull(t[2])) continue;
 		int tri = -1;
 		if (hull.distance_to_boundary((m.V[t[0]] + m.V[t[1]] + m.V[t[2]]) / 3.0, &tri, nearest[t[0]]) > eps) continue;
-		face_facet[f] = hull.triangle_facet[tri];
-		covered[face_facet[f]] += 0.5 * (m.V[t[1]] - m.V[t[0]]).cross(m.V[t[2]] - m.V[t[0]]).norm();
+		const Vec3 n  = (m.V[t[1]] - m.V[t[0]]).cross(m.V[t[2]] - m.V[t[0]]);
+		face_facet[f] = hull.facet_facing(tri, n.normalized());
+		covered[face_facet[f]] += 0.5 * n.norm();
 	}
 
 	// 2. Bridges: hull facets the surface does not cover.
@@ -144,33 +145,55 @@ ConcavityReport measure_concavity(const TriMesh& m, const Topology& topo, const 
 			++r.bridges;
 		}
 
-	// 3. Shortest surface paths between the ends of every hull edge that borders a bridge. A path
-	//    from p to q, where p->q runs counter-clockwise around facet B seen from outside, has B's
-	//    region on its left: the face holding the directed mesh edge (a,b) of the path votes for B,
-	//    the face holding (b,a) for the facet on the other side. Edges inside one merged coplanar
-	//    facet are not facet edges and are skipped.
+	// 3. Shortest surface paths along the hull's edges that border a bridge: one path per edge of
+	//    the polytope, i.e. per chain of hull edges between the same two facets. Chains, not single
+	//    hull edges, because a cut across an earlier cap leaves a row of collinear points on the
+	//    hull, and which of them count as hull vertices is decided by rounding (so by the pose).
+	//    A path from p to q, where p->q runs counter-clockwise around facet B seen from outside, has
+	//    B's region on its left: the face holding the directed mesh edge (a,b) of the path votes for
+	//    B, the face holding (b,a) for the facet on the other side.
 	std::vector<char>                on_path(3 * nf, 0);   // per directed edge (face corner 3f+k)
 	std::vector<std::pair<int, int>> corner_votes;         // (3f+k, facet on the left of that edge)
 	{
-		std::map<std::pair<int, int>, std::array<int, 2>> hull_edges;   // (p<q) -> {facet left of p->q, of q->p}
-		for (int t = 0; t < (int) hull.triangles.size(); ++t)
-			for (int k = 0; k < 3; ++k) {
-				const int a = hull.triangles[t][k], b = hull.triangles[t][(k + 1) % 3];
-				auto [it, fresh] = hull_edges.emplace(std::make_pair(std::min(a, b), std::max(a, b)),
-				                                      std::array<int, 2>{-1, -1});
-				it->second[a < b ? 0 : 1] = hull.triangle_facet[t];
-			}
 		struct Task
 		{
 			int              p, q, left, right;   // path ends; facets left and right of p->q (-1: not a bridge)
 			std::vector<int> path;
 		};
 		std::vector<Task> tasks;
-		for (const auto& [e, fc] : hull_edges) {
-			if (fc[0] < 0 || fc[1] < 0 || fc[0] == fc[1]) continue;
-			if (!bridge[fc[0]] && !bridge[fc[1]]) continue;
-			tasks.push_back({hull.point_source[e.first], hull.point_source[e.second], bridge[fc[0]] ? fc[0] : -1,
-			                 bridge[fc[1]] ? fc[1] : -1, {}});
+		// Directed hull edges p->q with the facet on their left, grouped by the facets' pair.
+		std::map<std::pair<int, int>, std::vector<std::array<int, 2>>> chains;   // (left, right) -> edges
+		{
+			std::map<std::pair<int, int>, int> left_of;   // directed hull edge -> facet on its left
+			for (int t = 0; t < (int) hull.triangles.size(); ++t)
+				for (int k = 0; k < 3; ++k)
+					left_of[{hull.triangles[t][k], hull.triangles[t][(k + 1) % 3]}] = hull.triangle_facet[t];
+			for (const auto& [e, fl] : left_of) {
+				auto it = left_of.find({e.second, e.first});
+				if (it == left_of.end() || it->second == fl || (!bridge[fl] && !bridge[it->second])) continue;
+				if (fl < it->second) chains[{fl, it->second}].push_back({e.first, e.second});
+			}
+		}
+		for (const auto& [facets, edges] : chains) {
+			const int left = bridge[facets.first] ? facets.first : -1, right = bridge[facets.second] ? facets.second : -1;
+			// Two faces of a convex polytope share one segment: walk it from the end no edge enters.
+			std::map<int, int> next, indeg;
+			for (const auto& e : edges) {
+				next[e[0]] = e[1];
+				++indeg[e[1]];
+			}
+			int start = -1;
+			for (const auto& e : edges)
+				if (!indeg.count(e[0])) start = start < 0 ? e[0] : -2;
+			size_t steps = 0;
+			int    end   = start;
+			while (start >= 0 && next.count(end) && steps <= edges.size()) end = next[end], ++steps;
+			if (start >= 0 && steps == edges.size()) {
+				tasks.push_back({hull.point_source[start], hull.point_source[end], left, right, {}});
+				continue;
+			}
+			for (const auto& e : edges)   // not one segment (facets merged around a bend): edge by edge
+				tasks.push_back({hull.point_source[e[0]], hull.point_source[e[1]], left, right, {}});
 		}
 		// Paths are independent: search them on all cores in chunks, then record them in order.
 		const size_t chunk = 64;
@@ -275,8 +298,10 @@ ConcavityReport measure_concavity(const TriMesh& m, const Topology& topo, const 
 		}
 	}
 
-	// 7. Notches (reflex edges) and the most concave one. Ties go to the lexicographically smallest
-	//    position, which does not depend on vertex order.
+	// 7. Notches (reflex edges) and the most concave one. Concavities equal to rounding are ties,
+	//    settled by position in the part's own principal frame: the same notch in every pose and
+	//    vertex order (a mirror-symmetric pair of notches would otherwise go either way).
+	const PoseFrame frame = pose_frame(m);
 	for (int f = 0; f < nf; ++f)
 		for (int k = 0; k < 3; ++k) {
 			const int g = topo.neighbour[f][k];
@@ -284,12 +309,10 @@ ConcavityReport measure_concavity(const TriMesh& m, const Topology& topo, const 
 			++r.notches;
 			for (int v : {m.F[f][k], m.F[f][(k + 1) % 3]}) {
 				const double c = r.vertex_concavity[v];
-				bool better = c > r.max_concavity;
-				if (!better && c == r.max_concavity && r.max_vertex >= 0 && c > 0) {
-					const Vec3 &p = m.V[v], &q = m.V[r.max_vertex];
-					better = std::lexicographical_compare(p.data(), p.data() + 3, q.data(), q.data() + 3);
-				}
-				if (better || (r.max_vertex < 0 && c > 0)) {
+				if (!(c > 0) || v == r.max_vertex) continue;
+				const bool better = r.max_vertex < 0 || c > r.max_concavity + frame.tol ||
+				                    (c >= r.max_concavity - frame.tol && frame.before(m.V[v], m.V[r.max_vertex]));
+				if (better) {
 					r.max_concavity = c;
 					r.max_vertex    = v;
 					r.max_bridge    = r.vertex_bridge[v];

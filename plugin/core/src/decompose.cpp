@@ -62,9 +62,11 @@ std::vector<Plane> candidate_planes(const TriMesh& m, const Topology& topo, cons
 	if (r < 0) return out;
 	const Vec3& p = m.V[r];
 
-	// The notch's most reflex incident edge, and the bisector of its two faces' normals.
-	double best = -1;
-	Vec3   edge = Vec3::Zero(), bis = Vec3::Zero();
+	// The notch's most reflex incident edge, and the bisector of its two faces' normals. Equally
+	// reflex edges (a symmetric notch) are told apart by their midpoints in the part's frame.
+	const PoseFrame frame = pose_frame(m);
+	double          best = -1;
+	Vec3            edge = Vec3::Zero(), bis = Vec3::Zero(), mid = Vec3::Zero();
 	for (int f = 0; f < (int) m.F.size(); ++f) {
 		// Only faces around r matter; scanning is O(n) once per cut.
 		int k = -1;
@@ -81,10 +83,12 @@ std::vector<Plane> candidate_planes(const TriMesh& m, const Topology& topo, cons
 			};
 			const Vec3   n1 = normal(f), n2 = normal(g);
 			const double excess = (n1.cross(n2)).norm() * (b - a).norm();   // sharper and longer first
-			if (excess > best) {
+			const double tie    = 1e-9 * std::max(best, excess);
+			if (excess > best + tie || (excess >= best - tie && frame.before((a + b) / 2, mid))) {
 				best = excess;
 				edge = (b - a).normalized();
 				bis  = n1 + n2;
+				mid  = (a + b) / 2;
 			}
 		}
 	}
@@ -147,11 +151,46 @@ std::string Decomposition::to_json() const
 	return o.str();
 }
 
+namespace {
+
+Decomposition decompose_normalized(const Solid& solid, const DecomposeOptions& opt);
+
+} // namespace
+
 Decomposition decompose(const Solid& solid, const DecomposeOptions& opt)
 {
 	if (!(opt.tau > 0) || !std::isfinite(opt.tau))
 		throw Error(Error::InvalidOption, "tau must be a positive, finite length.");
 	if (opt.max_parts < 0) throw Error(Error::InvalidOption, "max_parts must be 0 (unbounded) or positive.");
+
+	// Work centred and at unit size: a mesh far from the origin (CAD, map coordinates) would
+	// otherwise carry rounding errors hundreds of times larger than the same mesh at the origin,
+	// and rounding decides near-ties. The tree is mapped back to model coordinates at the end.
+	Vec3 c = Vec3::Zero();
+	for (const Vec3& p : solid.mesh.V) c += p;
+	c /= (double) solid.mesh.V.size();
+	const double s = extent(solid.mesh.V);
+	Solid        unit = solid;
+	for (Vec3& p : unit.mesh.V) p = (p - c) / s;
+	unit.volume /= s * s * s;
+	DecomposeOptions o = opt;
+	o.tau /= s;
+	Decomposition D = decompose_normalized(unit, o);
+	D.tau = opt.tau;
+	for (Node& n : D.nodes) {
+		for (Vec3& p : n.mesh.V) p = p * s + c;
+		n.concavity *= s;
+		n.volume *= s * s * s;
+		n.notch = n.notch * s + c;
+		n.plane.d = n.plane.d * s + n.plane.n.dot(c);
+	}
+	return D;
+}
+
+namespace {
+
+Decomposition decompose_normalized(const Solid& solid, const DecomposeOptions& opt)
+{
 	const auto start = std::chrono::steady_clock::now();
 
 	Decomposition D;
@@ -268,7 +307,7 @@ Decomposition decompose(const Solid& solid, const DecomposeOptions& opt)
 		// concavity: greedy scores alone would rather shave small arms off one by one. Among the
 		// others, scores within a hair (planes are nudged ~1e-7 of the size off vertices) are ties,
 		// settled by the total concavity.
-		const double hair = 1e-6 * bbox_diagonal(mesh.V);
+		const double hair = 1e-6 * extent(mesh.V);
 		int          pick = -1;
 		for (int i = 0; i < (int) trials.size(); ++i) {
 			const Trial& t = trials[i];
@@ -307,5 +346,7 @@ Decomposition decompose(const Solid& solid, const DecomposeOptions& opt)
 	if (opt.progress) opt.progress(100, "Decomposition done");
 	return D;
 }
+
+} // namespace
 
 } // namespace acd

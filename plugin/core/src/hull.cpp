@@ -91,22 +91,22 @@ ConvexHull::ConvexHull(const std::vector<Vec3>& input)
 		triangles.push_back(t);
 	}
 
-	// Merge exactly coplanar neighbouring triangles into facets.
-	std::vector<int> parent(triangles.size());
-	std::iota(parent.begin(), parent.end(), 0);
-	for (auto e : sm.edges()) {
-		auto h = sm.halfedge(e), o = sm.opposite(h);
-		auto f = sm.face(h), g = sm.face(o);
-		const Point &p = sm.point(sm.source(h)), &q = sm.point(sm.target(h));
-		const Point &r = sm.point(sm.target(sm.next(h))), &s = sm.point(sm.target(sm.next(o)));
-		if (CGAL::coplanar(p, q, r, s)) parent[root(parent, fid[f])] = root(parent, fid[g]);
-	}
-	// A sliver (nearly collinear corners, as cut outlines give) has no normal of its own worth the
-	// name: it joins a proper neighbouring facet, whose plane holds it to rounding (across its
-	// longest edge when that neighbour is proper; slivers next to slivers wait for a later pass).
+	// Merge coplanar neighbouring triangles into facets. "Coplanar" to rounding, not exactly: a cut's
+	// cap is planar only up to the rounding of its crossing points, and which way that rounding falls
+	// depends on the pose, so an exact test would split the same cap into different facets (and
+	// spurious bridges) when the object is rotated. A triangle's normal is known to about
+	// noise / height, so two normals that agree within their two uncertainties are the same plane
+	// (noise: 1e-12 of the extent, generous for coordinates of unit size).
 	double extent = 0;
 	for (const Vec3& p : points) extent = std::max(extent, (p - points[0]).norm());
+	const double noise = 1e-12 * extent;
+	// A sliver (nearly collinear corners, as cut outlines give) has no normal of its own worth the
+	// name: it joins a proper neighbouring facet afterwards, whose plane holds it to rounding
+	// (across its longest edge when that neighbour is proper; slivers next to slivers wait for a
+	// later pass). Merging slivers by their normals would chain unrelated facets together.
 	std::vector<char>                                 proper(triangles.size(), 1);
+	std::vector<double>                               height(triangles.size());
+	std::vector<Vec3>                                 normal(triangles.size());
 	std::vector<std::vector<std::pair<double, int>>> across(triangles.size());   // (edge length, face)
 	for (auto f : sm.faces()) {
 		const int t = fid[f];
@@ -115,15 +115,19 @@ ConvexHull::ConvexHull(const std::vector<Vec3>& input)
 			                       fid[sm.face(sm.opposite(h))]);
 		std::sort(across[t].rbegin(), across[t].rend());
 		const Tri& T = triangles[t];
-		const double area2 = (points[T[1]] - points[T[0]]).cross(points[T[2]] - points[T[0]]).norm();
-		proper[t] = !(area2 <= 1e-10 * extent * across[t][0].first);
+		const Vec3 n = (points[T[1]] - points[T[0]]).cross(points[T[2]] - points[T[0]]);
+		height[t]    = n.norm() / across[t][0].first;
+		normal[t]    = n.normalized();
+		proper[t]    = height[t] > 1e-10 * extent;
 	}
-	// A sliver exactly coplanar with proper triangles already has their facet's normal.
-	std::vector<char> root_proper(triangles.size(), 0);
+	std::vector<int> parent(triangles.size());
+	std::iota(parent.begin(), parent.end(), 0);
 	for (int t = 0; t < (int) triangles.size(); ++t)
-		if (proper[t]) root_proper[root(parent, t)] = 1;
-	for (int t = 0; t < (int) triangles.size(); ++t)
-		if (root_proper[root(parent, t)]) proper[t] = 1;
+		for (const auto& [len, g] : across[t]) {
+			if (g < t || !proper[t] || !proper[g]) continue;
+			const double angle = std::atan2(normal[t].cross(normal[g]).norm(), normal[t].dot(normal[g]));
+			if (angle <= noise / height[t] + noise / height[g]) parent[root(parent, t)] = root(parent, g);
+		}
 	for (bool changed = true; changed;) {
 		changed = false;
 		for (int t = 0; t < (int) triangles.size(); ++t) {
@@ -162,8 +166,17 @@ ConvexHull::ConvexHull(const std::vector<Vec3>& input)
 	}
 	for (const Tri& t : triangles) volume += points[t[0]].dot(points[t[1]].cross(points[t[2]])) / 6.0;
 	point_triangle.assign(points.size(), -1);
+	corner_start_.assign(points.size() + 1, 0);
 	for (int t = 0; t < (int) triangles.size(); ++t)
-		for (int v : triangles[t]) point_triangle[v] = t;
+		for (int v : triangles[t]) {
+			point_triangle[v] = t;
+			++corner_start_[v + 1];
+		}
+	for (size_t v = 0; v < points.size(); ++v) corner_start_[v + 1] += corner_start_[v];
+	corner_tris_.resize(corner_start_.back());
+	std::vector<int> fill(corner_start_.begin(), corner_start_.end() - 1);
+	for (int t = 0; t < (int) triangles.size(); ++t)
+		for (int v : triangles[t]) corner_tris_[fill[v]++] = t;
 
 	tree_ = std::make_unique<Tree>();
 	for (const Tri& t : triangles)
@@ -195,6 +208,18 @@ double ConvexHull::distance_to_facet(const Vec3& p, int facet) const
 		if (d2 <= plane2) break;
 	}
 	return std::sqrt(d2);
+}
+
+int ConvexHull::facet_facing(int t, const Vec3& n) const
+{
+	int    best  = triangle_facet[t];
+	double align = facet_plane[best].n.dot(n);
+	for (int v : triangles[t])
+		for (int i = corner_start_[v]; i < corner_start_[v + 1]; ++i) {
+			const int f = triangle_facet[corner_tris_[i]];
+			if (facet_plane[f].n.dot(n) > align) align = facet_plane[f].n.dot(n), best = f;
+		}
+	return best;
 }
 
 TriMesh ConvexHull::mesh() const

@@ -1,6 +1,8 @@
 #include "acd/mesh.h"
 #include "acd/topology.h"
 
+#include <Eigen/Eigenvalues>
+
 #include <algorithm>
 #include <cmath>
 #include <numeric>
@@ -50,6 +52,56 @@ double bbox_diagonal(const std::vector<Vec3>& pts)
 		hi = hi.cwiseMax(p);
 	}
 	return (hi - lo).norm();
+}
+
+double extent(const std::vector<Vec3>& pts)
+{
+	if (pts.empty()) return 0;
+	Vec3 c = Vec3::Zero();
+	for (const Vec3& p : pts) c += p;
+	c /= (double) pts.size();
+	double r2 = 0;
+	for (const Vec3& p : pts) r2 = std::max(r2, (p - c).squaredNorm());
+	return 2 * std::sqrt(r2);
+}
+
+PoseFrame pose_frame(const TriMesh& m)
+{
+	// Area-weighted moments of the surface (triangle centroids): a property of the shape, not of
+	// how densely or in which order its vertices are listed.
+	PoseFrame   fr;
+	double      area = 0;
+	Vec3        c    = Vec3::Zero();
+	std::vector<std::pair<double, Vec3>> w;
+	w.reserve(m.F.size());
+	for (const Tri& t : m.F) {
+		const Vec3 &a = m.V[t[0]], &b = m.V[t[1]], &d = m.V[t[2]];
+		const double ar = 0.5 * (b - a).cross(d - a).norm();
+		w.emplace_back(ar, (a + b + d) / 3.0);
+		area += ar;
+		c += ar * w.back().second;
+	}
+	if (!(area > 0)) return fr;
+	c /= area;
+	Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
+	for (const auto& [ar, p] : w) cov += ar * (p - c) * (p - c).transpose();
+	Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es(cov / area);
+	Eigen::Matrix3d axes;   // rows, major axis first
+	for (int i = 0; i < 3; ++i) axes.row(i) = es.eigenvectors().col(2 - i).transpose();
+	Vec3 skew = Vec3::Zero();
+	for (const auto& [ar, p] : w) skew += ar * (axes * (p - c)).array().cube().matrix();
+	// Signs from the two most skewed axes; the least skewed one (a mirror symmetry's normal has
+	// none) follows from handedness, which a rotation keeps.
+	int weakest = 0;
+	for (int i = 1; i < 3; ++i)
+		if (std::abs(skew[i]) < std::abs(skew[weakest])) weakest = i;
+	for (int i = 0; i < 3; ++i)
+		if (i != weakest && skew[i] < 0) axes.row(i) *= -1;
+	if (axes.determinant() < 0) axes.row(weakest) *= -1;
+	fr.origin = c;
+	fr.axes   = axes;
+	fr.tol    = 1e-9 * extent(m.V);
+	return fr;
 }
 
 std::vector<int> face_components(const TriMesh& m, int* count)

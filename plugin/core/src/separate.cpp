@@ -320,7 +320,7 @@ bool separate(const TriMesh& m, const Plane& plane, const Vec3& notch, SplitOutc
 {
 	// Keep every vertex clearly off the plane (the paper's perturbation of vertices on the plane):
 	// slide the plane by tiny offsets until no vertex is within `gap` of it.
-	const double diag = bbox_diagonal(m.V);
+	const double diag = extent(m.V);
 	const double gap  = 1e-9 * diag;
 	for (double off : {0.0, 1e-7, -1e-7, 3.1e-7, -3.1e-7, 1.3e-6, -1.3e-6}) {
 		Plane p = plane;

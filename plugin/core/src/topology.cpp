@@ -5,6 +5,7 @@ namespace acd {
 Topology::Topology(const TriMesh& m)
 {
 	const int nf = (int) m.F.size(), nv = (int) m.V.size();
+	flat = 1e-9 * extent(m.V);
 	adj_start.assign(nv + 1, 0);
 	for (const Tri& t : m.F)
 		for (int v : t) ++adj_start[v + 1];
@@ -37,11 +38,12 @@ bool is_reflex(const TriMesh& m, const Topology& t, int f, int k)
 	for (int j = 0; j < 3; ++j)
 		if (m.F[g][j] != a && m.F[g][j] != b) d = m.F[g][j];
 	if (d < 0) return false;
-	const Vec3 n  = (m.V[b] - m.V[a]).cross(m.V[c] - m.V[a]);
-	const Vec3 ad = m.V[d] - m.V[a];
-	// d above the plane of f (on its outer side) means the solid turns inward: a reflex edge.
-	// The relative threshold keeps numerically flat edges out.
-	return n.dot(ad) > 1e-10 * n.norm() * ad.norm();
+	auto rise = [&](int p, int q, int r, int x) {   // height of x above the plane of (p, q, r)
+		const Vec3   n  = (m.V[q] - m.V[p]).cross(m.V[r] - m.V[p]);
+		const double nn = n.norm();
+		return nn > 0 ? n.dot(m.V[x] - m.V[p]) / nn : 0.0;
+	};
+	return rise(a, b, c, d) > t.flat && rise(b, a, d, c) > t.flat;
 }
 
 } // namespace acd

@@ -32,12 +32,16 @@ public:
 	// p's nearest one (a mesh neighbour's, say) seeds the search: much faster than none (-1).
 	double distance_to_boundary(const Vec3& p, int* triangle = nullptr, int near = -1) const;
 	std::vector<int> point_triangle;   // a triangle incident to each hull vertex
+	// The facet among those touching triangle t's corners whose normal is closest to n: which facet
+	// a surface face near t lies on, even when its centroid is nearest to a neighbouring facet.
+	int facet_facing(int t, const Vec3& n) const;
 	// Distance from p to one facet (a planar convex polygon).
 	double distance_to_facet(const Vec3& p, int facet) const;
 	// Hull as a mesh (vertices = hull vertices).
 	TriMesh mesh() const;
 
 private:
+	std::vector<int> corner_start_, corner_tris_;   // CSR: hull vertex -> its triangles
 	struct Tree;
 	std::unique_ptr<Tree> tree_;
 };

@@ -4,6 +4,8 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
+#include <cmath>
+
 #include <array>
 #include <stdexcept>
 #include <string>
@@ -49,6 +51,30 @@ Solid make_solid(const TriMesh& input);
 
 double signed_volume(const TriMesh& m);
 double bbox_diagonal(const std::vector<Vec3>& pts);
+// A size that does not change with pose: twice the largest distance from the vertices' centroid
+// (an axis-aligned box diagonal grows by up to sqrt(3) under rotation).
+double extent(const std::vector<Vec3>& pts);
+
+// The surface's principal axes, oriented by its own shape (each sign chosen so the surface's third
+// moment along the axis is positive, the weakest axis completing a right-handed frame), so the frame
+// turns with the object and does not depend on vertex or face order. Used to break exact ties
+// (mirror-symmetric notches, equally reflex edges) the same way in every pose.
+struct PoseFrame
+{
+	Vec3            origin = Vec3::Zero();
+	Eigen::Matrix3d axes = Eigen::Matrix3d::Identity();   // rows: major, middle, minor axis
+	double          tol = 0;                               // coordinates closer than this are equal
+	// Does a come before b? Compares coordinates along the axes in turn; false when all are equal.
+	bool before(const Vec3& a, const Vec3& b) const
+	{
+		const Vec3 d = axes * (a - b);
+		for (int i = 0; i < 3; ++i)
+			if (std::abs(d[i]) > tol) return d[i] < 0;
+		return false;
+	}
+};
+PoseFrame pose_frame(const TriMesh& m);
+
 // Connected components through shared edges; returns the component id of each face.
 std::vector<int> face_components(const TriMesh& m, int* count);
 

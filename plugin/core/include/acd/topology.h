@@ -12,6 +12,9 @@ struct Topology
 	// CSR vertex -> neighbouring vertices; adj_corner[i] = 3f+k of the face f whose edge k runs
 	// from the vertex to adj[i] (each directed edge of a closed manifold is in exactly one face).
 	std::vector<int> adj_start, adj, adj_corner;
+	// Heights below this (1e-9 of the mesh's extent) are rounding: a dihedral that close to flat
+	// is neither reflex nor convex.
+	double flat = 0;
 
 	explicit Topology(const TriMesh& m);
 	template <class Fn> void for_each_neighbour(int v, Fn fn) const
@@ -28,7 +31,8 @@ struct Topology
 };
 
 // Is the edge (F[f][k], F[f][k+1]) reflex, i.e. is its dihedral angle, measured inside the solid,
-// above 180 degrees? Uses the vertex opposite to the edge in the neighbouring face.
+// above 180 degrees? Each face's far vertex must rise above the other face's plane by more than
+// `flat`: an angle threshold alone lets the noisy normals of tiny cut triangles decide.
 bool is_reflex(const TriMesh& m, const Topology& t, int f, int k);
 
 inline long long edge_key(int a, int b)
