@@ -78,6 +78,7 @@ def add_mesh(ms, V, F, name="input"):
 # ---- independent checks ---------------------------------------------------------------------
 def volume(V, F):
     V = np.asarray(V, float)
+    V = V - V.mean(0)   # far from the origin the triple products would cancel catastrophically
     a, b, c = V[F[:, 0]], V[F[:, 1]], V[F[:, 2]]
     return float(np.einsum("ij,ij->i", a, np.cross(b, c)).sum() / 6.0)
 

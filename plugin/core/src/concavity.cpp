@@ -80,6 +80,12 @@ ConcavityReport measure_concavity(const TriMesh& m, const Topology& topo, const 
 	const double diag = extent(hull.points);
 	const double eps  = 1e-9 * diag;
 
+	// Everything below walks across edges; an open part (only a broken input can make one) would
+	// send it out of bounds.
+	for (const auto& nb : topo.neighbour)
+		if (nb[0] < 0 || nb[1] < 0 || nb[2] < 0)
+			throw Error(Error::Internal, "A part is not closed (is the input self-intersecting?).");
+
 	ConcavityReport r;
 	r.vertex_concavity.assign(nv, 0.0);
 	r.vertex_bridge.assign(nv, -1);

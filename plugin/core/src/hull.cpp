@@ -164,7 +164,7 @@ ConvexHull::ConvexHull(const std::vector<Vec3>& input)
 		facet_plane[f].n = n.normalized();
 		facet_plane[f].d = facet_plane[f].n.dot(c);
 	}
-	for (const Tri& t : triangles) volume += points[t[0]].dot(points[t[1]].cross(points[t[2]])) / 6.0;
+	volume = signed_volume(TriMesh{points, triangles});
 	point_triangle.assign(points.size(), -1);
 	corner_start_.assign(points.size() + 1, 0);
 	for (int t = 0; t < (int) triangles.size(); ++t)

@@ -3,6 +3,9 @@
 
 #include <Eigen/Eigenvalues>
 
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Polygon_mesh_processing/self_intersections.h>
+
 #include <algorithm>
 #include <cmath>
 #include <numeric>
@@ -37,9 +40,13 @@ int find_root(std::vector<int>& p, int x)
 
 double signed_volume(const TriMesh& m)
 {
-	double v = 0;
+	// Relative to a vertex of the mesh: far from the origin the plain triple products cancel
+	// catastrophically (a mesh 1e7 away would get a random sign).
+	if (m.F.empty()) return 0;
+	const Vec3 o = m.V[m.F[0][0]];
+	double     v = 0;
 	for (const Tri& t : m.F)
-		v += m.V[t[0]].dot(m.V[t[1]].cross(m.V[t[2]]));
+		v += (m.V[t[0]] - o).dot((m.V[t[1]] - o).cross(m.V[t[2]] - o));
 	return v / 6.0;
 }
 
@@ -243,6 +250,34 @@ Solid make_solid(const TriMesh& in)
 					while (orig[cf][ck] != v) ++ck;
 				}
 			}
+	}
+
+	// Cuts assume the surface bounds one solid; overlapping or folded sheets would make parts that
+	// are not closed.
+	{
+		using K = CGAL::Exact_predicates_inexact_constructions_kernel;
+		std::vector<K::Point_3> pts;
+		pts.reserve(s.mesh.V.size());
+		for (const Vec3& p : s.mesh.V) pts.emplace_back(p.x(), p.y(), p.z());
+		std::vector<std::array<std::size_t, 3>> tris;
+		tris.reserve(s.mesh.F.size());
+		for (const Tri& t : s.mesh.F) tris.push_back({(std::size_t) t[0], (std::size_t) t[1], (std::size_t) t[2]});
+		std::vector<std::pair<std::size_t, std::size_t>> pairs;
+		CGAL::Polygon_mesh_processing::triangle_soup_self_intersections(pts, tris, std::back_inserter(pairs));
+		// Faces that share a corner, or nearly do, may cross by a rounding error (tiny triangles
+		// of earlier cuts do): not a fold of the surface.
+		const double near2 = std::pow(1e-9 * diag, 2);
+		long         crossing = 0;
+		for (const auto& [f, g] : pairs) {
+			bool touch = false;
+			for (int a : s.mesh.F[f])
+				for (int b : s.mesh.F[g]) touch |= a == b || (s.mesh.V[a] - s.mesh.V[b]).squaredNorm() <= near2;
+			crossing += !touch;
+		}
+		if (crossing > 0)
+			invalid("The mesh intersects itself (" + std::to_string(crossing) + " pairs of faces cross; folded "
+			        "sheets or overlapping shells). Repair it with 'Alpha Wrap' (generate_alpha_wrap), or find "
+			        "them with 'Select Self Intersecting Faces'.");
 	}
 
 	face_components(s.mesh, &s.shells);
