@@ -8,6 +8,11 @@ bash "$here/setup.sh"
 echo "== C++ core tests =="
 ctest --test-dir "$ACD_BUILD_DIR" --output-on-failure
 
+if [ "${ACD_SKIP_SANITIZERS:-0}" != 1 ]; then
+	echo "== C++ core under AddressSanitizer + UndefinedBehaviorSanitizer =="
+	bash "$here/run_sanitizers.sh"
+fi
+
 echo "== pytest (through pymeshlab) =="
 set +e
 python3 -m pytest -q "$ACD_REPO/tests" "$@"
