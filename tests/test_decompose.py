@@ -129,6 +129,34 @@ def test_hulls_are_added_and_bounded(ms):
             assert ms.mesh(i).vertex_number() <= 6
 
 
+@pytest.mark.parametrize("bad,match", [
+    ("duplicate", "(?s)faces duplicate other faces.*Remove Duplicate Faces"),
+    ("self_intersecting", "(?s)intersects itself.*Alpha Wrap"),
+    ("nan", "NaN"),
+])
+def test_more_bad_input_gets_a_clear_error(ms, bad, match):
+    V, F = extrude(L_SHAPE, 0, 1)
+    if bad == "duplicate":
+        F = np.vstack([F, F[:1]])
+    elif bad == "self_intersecting":   # the L and a copy overlapping it
+        F = np.vstack([F, F + len(V)])
+        V = np.vstack([V, V + 0.3])
+    else:
+        V = V.copy()
+        V[3] = np.nan
+    add_mesh(ms, V, F)
+    for f in (pymeshlab_acd.decompose, lambda m, **k: m.compute_scalar_by_notch_concavity()):
+        with pytest.raises(pymeshlab.PyMeshLabException, match=match):
+            f(ms, tau=1.0)
+
+
+def test_inside_out_input_is_turned_outward(ms):
+    V, F = extrude(U_SHAPE, 0, 1)
+    add_mesh(ms, V, F[:, ::-1])
+    res, ids = pymeshlab_acd.decompose(ms, tau=0.1, tau_unit="model_units")
+    assert res["parts"] == 3 and all(volume(ms.mesh(i).vertex_matrix(), ms.mesh(i).face_matrix()) > 0 for i in ids)
+
+
 @pytest.mark.parametrize("bad", ["open", "nonmanifold", "tau"])
 def test_bad_input_gets_a_clear_error(ms, bad):
     V, F = extrude(L_SHAPE, 0, 1)
@@ -163,3 +191,21 @@ def test_shared_closed_meshes_partition(ms, name):
     res, ids = pymeshlab_acd.decompose(ms, tau=10.0, cut_plane_selection="bisector")
     assert res["parts"] >= 1
     check_partition(ms, 0, ids, tau_abs=res["tau_model_units"], overlap_samples=4)
+
+
+def test_disjoint_solids_are_decomposed_each(ms):
+    # two convex cubes: no notch lies between them, yet their union is not convex
+    (V1, F1), (V2, F2) = extrude([(0, 0), (1, 0), (1, 1), (0, 1)], 0, 1), extrude([(3, 0), (4, 0), (4, 1), (3, 1)], 0, 1)
+    add_mesh(ms, np.vstack([V1, V2]), np.vstack([F1, F2 + len(V1)]))
+    res, ids = pymeshlab_acd.decompose(ms, tau=0.1, tau_unit="model_units")
+    assert res["parts"] == 2
+    check_partition(ms, 0, ids, tau_abs=0.1)
+    # an L and a U side by side: 2 + 3 parts, the first split being the one between the solids
+    ms2 = pymeshlab.MeshSet()
+    (V1, F1), (V2, F2) = extrude(L_SHAPE, 0, 1), extrude([(x + 5, y) for x, y in U_SHAPE], 0, 1)
+    add_mesh(ms2, np.vstack([V1, V2]), np.vstack([F1, F2 + len(V1)]))
+    res, ids = pymeshlab_acd.decompose(ms2, tau=0.1, tau_unit="model_units")
+    assert res["parts"] == 5
+    check_partition(ms2, 0, ids, tau_abs=0.1, overlap_samples=10)
+    root = res["tree"]["nodes"][0]
+    assert root["solids"] and "plane" not in root

@@ -21,7 +21,7 @@ WORKERS = max(1, min(2, os.cpu_count() or 1))
 KINDS = [   # message fragment -> kind, first match wins
     ("pymeshlab:", "refused by pymeshlab"), ("tau", "invalid tau"), ("empty", "empty"),
     ("point cloud", "point cloud"), ("does not have Any Faces", "point cloud"), ("NaN", "NaN/Inf"), ("open", "open"), ("non-manifold", "non-manifold"),
-    ("oriented", "orientation"), ("repeat a vertex", "repeated index"), ("zero area", "zero area"),
+    ("oriented", "orientation"), ("repeat a vertex", "repeated index"), ("duplicate other faces", "duplicate faces"), ("zero area", "zero area"),
     ("size", "coordinate scale"), ("no volume", "no volume"), ("coplanar", "no volume"),
     ("intersect", "self-intersection"),
 ]

@@ -139,7 +139,8 @@ std::string Decomposition::to_json() const
 		o << (i ? "," : "") << "{\"id\":" << i << ",\"path\":\"" << n.path << "\",\"parent\":" << n.parent
 		  << ",\"children\":[" << n.child[0] << "," << n.child[1] << "]"
 		  << ",\"concavity\":" << n.concavity << ",\"volume\":" << n.volume << ",\"notches\":" << n.notches
-		  << ",\"leaf\":" << (n.leaf() ? "true" : "false") << ",\"uncut\":" << (n.uncut ? "true" : "false");
+		  << ",\"leaf\":" << (n.leaf() ? "true" : "false") << ",\"uncut\":" << (n.uncut ? "true" : "false")
+		  << ",\"solids\":" << (n.solids ? "true" : "false");
 		if (n.concavity > 0)
 			o << ",\"notch\":[" << n.notch.x() << "," << n.notch.y() << "," << n.notch.z() << "]";
 		if (n.has_plane)
@@ -217,8 +218,39 @@ Decomposition decompose_normalized(const Solid& solid, const DecomposeOptions& o
 		if (n.concavity > opt.tau) measured[id] = std::move(ms);
 	};
 
-	measure_node(add_node(solid.mesh, -1, "0"));
-	const double c0 = std::max(D.nodes[0].concavity, opt.tau);
+	// Several solids (disjoint shells): no notch lies between them, so the measure would call the
+	// union convex. Split them off first, one per level (A | rest), keeping the tree binary.
+	std::vector<TriMesh> solids;
+	if (solid.shells > 1) solids = connected_solids(solid.mesh);
+	std::vector<int> first_open;
+	if (solids.size() > 1) {
+		int node = add_node(solid.mesh, -1, "0");
+		for (size_t k = 0; k + 1 < solids.size(); ++k) {
+			Node& n     = D.nodes[node];
+			n.volume    = signed_volume(n.mesh);
+			n.solids    = true;
+			const std::string path = n.path;
+			TriMesh rest;
+			for (size_t j = k + 1; j < solids.size(); ++j) {
+				const int o = (int) rest.V.size();
+				rest.V.insert(rest.V.end(), solids[j].V.begin(), solids[j].V.end());
+				for (const Tri& t : solids[j].F) rest.F.push_back({t[0] + o, t[1] + o, t[2] + o});
+			}
+			const int a = add_node(std::move(solids[k]), node, path + '0');
+			const int b = add_node(k + 2 < solids.size() ? std::move(rest) : std::move(solids[k + 1]), node, path + '1');
+			D.nodes[node].child[0] = a;
+			D.nodes[node].child[1] = b;
+			first_open.push_back(a);
+			if (k + 2 == solids.size()) first_open.push_back(b);
+			node = b;
+		}
+	}
+	else first_open.push_back(add_node(solid.mesh, -1, "0"));
+	double c0 = opt.tau;
+	for (int id : first_open) {
+		measure_node(id);
+		c0 = std::max(c0, D.nodes[id].concavity);
+	}
 
 	// Open nodes, most concave first (ties by path), so a max_parts bound cuts the worst notches.
 	auto worse = [&](int a, int b) {
@@ -226,8 +258,8 @@ Decomposition decompose_normalized(const Solid& solid, const DecomposeOptions& o
 		return D.nodes[a].path > D.nodes[b].path;
 	};
 	std::priority_queue<int, std::vector<int>, decltype(worse)> open(worse);
-	open.push(0);
-	int parts = 1;
+	for (int id : first_open) open.push(id);
+	int parts = (int) first_open.size();
 	while (!open.empty()) {
 		const int id = open.top();
 		if (D.nodes[id].concavity <= opt.tau) break;   // every open node is within tau

@@ -187,6 +187,18 @@ Solid make_solid(const TriMesh& in)
 		invalid(std::to_string(degenerate) + " faces have zero area. Run 'Remove Zero Area Faces' "
 		        "(meshing_remove_null_faces) first.");
 
+	// Duplicated faces (same three vertices, either orientation) would otherwise be reported as
+	// non-manifold or misoriented edges, which sends the user to the wrong repair.
+	{
+		std::vector<Tri> keys(s.mesh.F);
+		for (Tri& t : keys) std::sort(t.begin(), t.end());
+		std::sort(keys.begin(), keys.end());
+		const long dup = (long) (keys.end() - std::unique(keys.begin(), keys.end()));
+		if (dup > 0)
+			invalid(std::to_string(dup) + " faces duplicate other faces. Run 'Remove Duplicate Faces' "
+			        "(meshing_remove_duplicate_faces) first.");
+	}
+
 	// Edge use: each undirected edge must be used by exactly two faces, once in each direction.
 	std::unordered_map<EdgeKey, int, EdgeHash> directed;
 	directed.reserve(s.mesh.F.size() * 3);

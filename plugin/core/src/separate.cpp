@@ -241,48 +241,24 @@ bool separate_at(const TriMesh& m, const Plane& plane, const Vec3& notch, SplitO
 			all.F.push_back({pos(t[0]), pos(t[2]), pos(t[1])});
 		}
 
-		// Shells, then solids: each cavity (negative shell) joins the outer shell around it.
-		int              ncomp = 0;
-		std::vector<int> comp  = face_components(all, &ncomp);
-		std::vector<TriMesh> shells(ncomp);
-		std::vector<std::vector<int>> vmap(ncomp, std::vector<int>());
-		std::vector<int> remap(all.V.size(), -1), remap_comp(all.V.size(), -1);
-		for (int f = 0; f < (int) all.F.size(); ++f) {
-			TriMesh& sh = shells[comp[f]];
-			Tri      t;
-			for (int k = 0; k < 3; ++k) {
-				int v = all.F[f][k];
-				if (remap_comp[v] != comp[f]) {
-					remap_comp[v] = comp[f];
-					remap[v]      = (int) sh.V.size();
-					sh.V.push_back(all.V[v]);
-				}
-				t[k] = remap[v];
-			}
-			sh.F.push_back(t);
+		// Solids: each cavity (an inward shell) stays with the outer shell around it.
+		std::vector<TriMesh> solids;
+		try {
+			solids = connected_solids(all);
 		}
-		std::vector<int> outer, cavity;
-		for (int c = 0; c < ncomp; ++c) (signed_volume(shells[c]) > 0 ? outer : cavity).push_back(c);
-		if (outer.size() < 2) continue;   // still one solid (a handle): cut the next region too
-		if (outer.size() > 2) return false;
+		catch (const Error&) {
+			return false;
+		}
+		if (solids.size() < 2) continue;   // still one solid (a handle): cut the next region too
+		if (solids.size() > 2) return false;
 		std::array<int, 2> side;
 		for (int i = 0; i < 2; ++i) {
 			double sum = 0;
-			for (const Vec3& p : shells[outer[i]].V) sum += plane.eval(p);
+			for (const Vec3& p : solids[i].V) sum += plane.eval(p);
 			side[i] = sum > 0 ? 1 : 0;
 		}
 		if (side[0] == side[1]) return false;
-		for (int i = 0; i < 2; ++i) out.parts[side[i]] = shells[outer[i]];
-		for (int c : cavity) {
-			int host = -1;
-			for (int i = 0; i < 2; ++i)
-				if (inside(shells[outer[i]], shells[c].V[0])) host = side[i];
-			if (host < 0) return false;
-			TriMesh& h = out.parts[host];
-			int      o = (int) h.V.size();
-			h.V.insert(h.V.end(), shells[c].V.begin(), shells[c].V.end());
-			for (const Tri& t : shells[c].F) h.F.push_back({t[0] + o, t[1] + o, t[2] + o});
-		}
+		for (int i = 0; i < 2; ++i) out.parts[side[i]] = std::move(solids[i]);
 		out.plane    = plane;
 		out.cap_area = 0;
 		for (const Tri& t : caps)
@@ -293,6 +269,49 @@ bool separate_at(const TriMesh& m, const Plane& plane, const Vec3& notch, SplitO
 }
 
 } // namespace
+
+std::vector<TriMesh> connected_solids(const TriMesh& all)
+{
+	int                  ncomp = 0;
+	std::vector<int>     comp  = face_components(all, &ncomp);
+	std::vector<TriMesh> shells(ncomp);
+	std::vector<int>     remap(all.V.size(), -1), remap_comp(all.V.size(), -1);
+	for (int f = 0; f < (int) all.F.size(); ++f) {
+		TriMesh& sh = shells[comp[f]];
+		Tri      t;
+		for (int k = 0; k < 3; ++k) {
+			const int v = all.F[f][k];
+			if (remap_comp[v] != comp[f]) {
+				remap_comp[v] = comp[f];
+				remap[v]      = (int) sh.V.size();
+				sh.V.push_back(all.V[v]);
+			}
+			t[k] = remap[v];
+		}
+		sh.F.push_back(t);
+	}
+	std::vector<double> vol(ncomp);
+	std::vector<int>    outer, cavity;
+	for (int c = 0; c < ncomp; ++c) {
+		vol[c] = signed_volume(shells[c]);
+		(vol[c] > 0 ? outer : cavity).push_back(c);
+	}
+	// Largest first; equal volumes keep their order (a stable, pose-free order would need more).
+	std::stable_sort(outer.begin(), outer.end(), [&](int a, int b) { return vol[a] > vol[b]; });
+	std::vector<TriMesh> solids;
+	for (int c : outer) solids.push_back(shells[c]);
+	for (int c : cavity) {
+		int host = -1;   // the smallest outer shell around the cavity
+		for (int i = (int) outer.size() - 1; i >= 0 && host < 0; --i)
+			if (inside(shells[outer[i]], shells[c].V[0])) host = i;
+		if (host < 0) throw Error(Error::InvalidInput, "An inward-facing shell lies outside every solid.");
+		TriMesh&  h = solids[host];
+		const int o = (int) h.V.size();
+		h.V.insert(h.V.end(), shells[c].V.begin(), shells[c].V.end());
+		for (const Tri& t : shells[c].F) h.F.push_back({t[0] + o, t[1] + o, t[2] + o});
+	}
+	return solids;
+}
 
 bool inside(const TriMesh& m, const Vec3& p)
 {

@@ -40,6 +40,7 @@ struct Node
 	bool        has_plane = false;      // internal node: the cut
 	Plane       plane;
 	bool        uncut = false;     // leaf above tau because no plane split it (reported)
+	bool        solids = false;    // split into its disjoint solids (first one | the rest), not by a plane
 	TriMesh     mesh;              // the node's solid
 	bool        leaf() const { return child[0] < 0; }
 };

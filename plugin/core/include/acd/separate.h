@@ -20,6 +20,10 @@ struct SplitOutcome
 // a cap that cannot be triangulated, or more than two pieces); the caller then tries another plane.
 bool separate(const TriMesh& m, const Plane& plane, const Vec3& notch, SplitOutcome& out);
 
+// The solids of a closed mesh: each outward shell with the inward shells (cavities) directly inside
+// it, largest volume first. Throws Error(InvalidInput) for a cavity that no shell holds.
+std::vector<TriMesh> connected_solids(const TriMesh& m);
+
 // Point-in-solid by ray parity (a closed mesh).
 bool inside(const TriMesh& m, const Vec3& p);
 
