@@ -84,7 +84,8 @@ ConcavityReport measure_concavity(const TriMesh& m, const Topology& topo, const 
 	// send it out of bounds.
 	for (const auto& nb : topo.neighbour)
 		if (nb[0] < 0 || nb[1] < 0 || nb[2] < 0)
-			throw Error(Error::Internal, "A part is not closed (is the input self-intersecting?).");
+			throw Error(Error::InvalidInput, "A cut made a part that is not closed: the mesh intersects itself "
+			                                 "there. Use preprocessing = alpha_wrap (or MeshLab's 'Alpha Wrap').");
 
 	ConcavityReport r;
 	r.vertex_concavity.assign(nv, 0.0);

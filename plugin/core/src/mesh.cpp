@@ -264,8 +264,9 @@ Solid make_solid(const TriMesh& in)
 			}
 	}
 
-	// Cuts assume the surface bounds one solid; overlapping or folded sheets would make parts that
-	// are not closed.
+	// Cuts assume the surface bounds one solid; overlapping or folded sheets can make parts that are
+	// not closed. Counted, not refused: scanned meshes often cross themselves a little (the host
+	// decides; the decomposition itself never returns an open part).
 	{
 		using K = CGAL::Exact_predicates_inexact_constructions_kernel;
 		std::vector<K::Point_3> pts;
@@ -279,17 +280,13 @@ Solid make_solid(const TriMesh& in)
 		// Faces that share a corner, or nearly do, may cross by a rounding error (tiny triangles
 		// of earlier cuts do): not a fold of the surface.
 		const double near2 = std::pow(1e-9 * diag, 2);
-		long         crossing = 0;
+		long&        crossing = s.self_intersections;
 		for (const auto& [f, g] : pairs) {
 			bool touch = false;
 			for (int a : s.mesh.F[f])
 				for (int b : s.mesh.F[g]) touch |= a == b || (s.mesh.V[a] - s.mesh.V[b]).squaredNorm() <= near2;
 			crossing += !touch;
 		}
-		if (crossing > 0)
-			invalid("The mesh intersects itself (" + std::to_string(crossing) + " pairs of faces cross; folded "
-			        "sheets or overlapping shells). Repair it with 'Alpha Wrap' (generate_alpha_wrap), or find "
-			        "them with 'Select Self Intersecting Faces'.");
 	}
 
 	face_components(s.mesh, &s.shells);

@@ -43,6 +43,7 @@ struct Solid
 	int              split_vertices = 0;    // non-manifold vertices that were split
 	int              unreferenced_vertices = 0;
 	bool             flipped = false;       // the input was inside out and has been turned outward
+	long             self_intersections = 0;   // pairs of faces crossing away from shared corners
 	double           volume = 0;
 };
 
