@@ -48,7 +48,8 @@ def cmd_decompose(a):
     src = ms.current_mesh_id()
     params = dict(tau=a.tau, tau_unit=a.tau_unit, cut_plane_selection=a.cut_plane_selection,
                   max_parts=a.max_parts, output_hulls=a.hulls, max_hull_vertices=a.max_hull_vertices,
-                  time_limit=a.time_limit)
+                  time_limit=a.time_limit, preprocessing=a.preprocessing, wrap_alpha=a.wrap_alpha,
+                  wrap_offset=a.wrap_offset, on_self_intersection=a.on_self_intersection)
     t0 = time.perf_counter()
     res, ids = decompose(ms, **params)
     wall = time.perf_counter() - t0
@@ -60,6 +61,8 @@ def cmd_decompose(a):
     print(f"time             {res['time']:.2f} s (wall {wall:.2f} s)")
     if res["max_parts_reached"]:
         print("note             max_parts reached: some parts exceed tau")
+    if res.get("self_intersections"):
+        print(f"note             the mesh intersects itself ({res['self_intersections']} face pairs cross)")
     if a.out:
         out = pathlib.Path(a.out)
         out.mkdir(parents=True, exist_ok=True)
@@ -91,6 +94,11 @@ def main(argv=None):
     d.add_argument("--hulls", action="store_true", help="also output each part's convex hull")
     d.add_argument("--max-hull-vertices", type=int, default=0)
     d.add_argument("--time-limit", type=float, default=0.0)
+    d.add_argument("--preprocessing", default="none", choices=["none", "alpha_wrap"],
+                   help="alpha_wrap: wrap dirty input (open, non-manifold, self-intersecting, points) first")
+    d.add_argument("--wrap-alpha", type=float, default=1.0, help="alpha wrap: alpha, %% of size")
+    d.add_argument("--wrap-offset", type=float, default=0.1, help="alpha wrap: offset, %% of size")
+    d.add_argument("--on-self-intersection", default="warn", choices=["warn", "refuse"])
     a = p.parse_args(argv)
     try:
         return {"concavity": cmd_concavity, "decompose": cmd_decompose}[a.cmd](a)
