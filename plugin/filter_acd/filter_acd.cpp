@@ -321,6 +321,8 @@ FilterACD::decompose(const RichParameterList& par, MeshDocument& md, vcg::CallBa
 	if (cb) o.progress = [cb](int pct, const char* msg) { return cb(pct, msg); };
 
 	if (s.flipped) log("The mesh was oriented inward; the decomposition uses it turned outward.");
+	if (s.unreferenced_vertices > 0) log("%d unreferenced vertices were ignored.", s.unreferenced_vertices);
+	if (s.split_vertices > 0) log("%d non-manifold vertices were split into one copy per fan.", s.split_vertices);
 	acd::Decomposition d = acd::decompose(s, o);
 
 	const bool hulls     = par.getBool("output_hulls");
