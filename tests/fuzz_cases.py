@@ -28,10 +28,9 @@ CASES = len(BASES) * len(MUTATIONS) * SEEDS
 
 
 def cube(c=(0, 0, 0), s=1.0):
-    V = np.array([[x, y, z] for x in (0, 1) for y in (0, 1) for z in (0, 1)], float) * s + np.asarray(c, float)
-    F = np.array([[0, 1, 3], [0, 3, 2], [4, 6, 7], [4, 7, 5], [0, 4, 5], [0, 5, 1],
-                  [2, 3, 7], [2, 7, 6], [0, 2, 6], [0, 6, 4], [1, 5, 7], [1, 7, 3]], np.int32)
-    return V, F
+    from conftest import extrude
+    V, F = extrude([(0, 0), (1, 0), (1, 1), (0, 1)], 0, 1)
+    return V * s + np.asarray(c, float), F
 
 
 def base_mesh(name, cache):

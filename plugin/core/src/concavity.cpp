@@ -308,7 +308,8 @@ ConcavityReport measure_concavity(const TriMesh& m, const Topology& topo, const 
 	// 7. Notches (reflex edges) and the most concave one. Concavities equal to rounding are ties,
 	//    settled by position in the part's own principal frame: the same notch in every pose and
 	//    vertex order (a mirror-symmetric pair of notches would otherwise go either way).
-	const PoseFrame frame = pose_frame(m);
+	r.frame                = pose_frame(m);
+	const PoseFrame& frame = r.frame;
 	for (int f = 0; f < nf; ++f)
 		for (int k = 0; k < 3; ++k) {
 			const int g = topo.neighbour[f][k];

@@ -64,7 +64,7 @@ std::vector<Plane> candidate_planes(const TriMesh& m, const Topology& topo, cons
 
 	// The notch's most reflex incident edge, and the bisector of its two faces' normals. Equally
 	// reflex edges (a symmetric notch) are told apart by their midpoints in the part's frame.
-	const PoseFrame frame = pose_frame(m);
+	const PoseFrame& frame = rep.frame;
 	double          best = -1;
 	Vec3            edge = Vec3::Zero(), bis = Vec3::Zero(), mid = Vec3::Zero();
 	for (int f = 0; f < (int) m.F.size(); ++f) {
@@ -231,11 +231,7 @@ Decomposition decompose_normalized(const Solid& solid, const DecomposeOptions& o
 			n.solids    = true;
 			const std::string path = n.path;
 			TriMesh rest;
-			for (size_t j = k + 1; j < solids.size(); ++j) {
-				const int o = (int) rest.V.size();
-				rest.V.insert(rest.V.end(), solids[j].V.begin(), solids[j].V.end());
-				for (const Tri& t : solids[j].F) rest.F.push_back({t[0] + o, t[1] + o, t[2] + o});
-			}
+			for (size_t j = k + 1; j < solids.size(); ++j) append(rest, solids[j]);
 			const int a = add_node(std::move(solids[k]), node, path + '0');
 			const int b = add_node(k + 2 < solids.size() ? std::move(rest) : std::move(solids[k + 1]), node, path + '1');
 			D.nodes[node].child[0] = a;

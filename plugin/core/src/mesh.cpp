@@ -50,6 +50,13 @@ double signed_volume(const TriMesh& m)
 	return v / 6.0;
 }
 
+void append(TriMesh& to, const TriMesh& from)
+{
+	const int o = (int) to.V.size();
+	to.V.insert(to.V.end(), from.V.begin(), from.V.end());
+	for (const Tri& t : from.F) to.F.push_back({t[0] + o, t[1] + o, t[2] + o});
+}
+
 double bbox_diagonal(const std::vector<Vec3>& pts)
 {
 	if (pts.empty()) return 0;
@@ -105,7 +112,6 @@ PoseFrame pose_frame(const TriMesh& m)
 	for (int i = 0; i < 3; ++i)
 		if (i != weakest && skew[i] < 0) axes.row(i) *= -1;
 	if (axes.determinant() < 0) axes.row(weakest) *= -1;
-	fr.origin = c;
 	fr.axes   = axes;
 	fr.tol    = 1e-9 * extent(m.V);
 	return fr;

@@ -305,10 +305,7 @@ std::vector<TriMesh> connected_solids(const TriMesh& all)
 		for (int i = (int) outer.size() - 1; i >= 0 && host < 0; --i)
 			if (inside(shells[outer[i]], shells[c].V[0])) host = i;
 		if (host < 0) throw Error(Error::InvalidInput, "An inward-facing shell lies outside every solid.");
-		TriMesh&  h = solids[host];
-		const int o = (int) h.V.size();
-		h.V.insert(h.V.end(), shells[c].V.begin(), shells[c].V.end());
-		for (const Tri& t : shells[c].F) h.F.push_back({t[0] + o, t[1] + o, t[2] + o});
+		append(solids[host], shells[c]);
 	}
 	return solids;
 }

@@ -114,9 +114,7 @@ TriMesh torus(double R, double r, int nu, int nv)
 TriMesh merge(const TriMesh& a, const TriMesh& b)
 {
 	TriMesh m = a;
-	int     o = (int) a.V.size();
-	m.V.insert(m.V.end(), b.V.begin(), b.V.end());
-	for (auto f : b.F) m.F.push_back({f[0] + o, f[1] + o, f[2] + o});
+	append(m, b);
 	return m;
 }
 

@@ -18,6 +18,7 @@ struct ConcavityReport
 	double max_concavity = 0;   // over notch vertices
 	int    max_vertex    = -1;  // the most concave notch vertex (-1: no notch)
 	int    max_bridge    = -1;  // hull facet it retracts to
+	PoseFrame frame;            // the part's frame that settled ties (reused for the cut's ties)
 };
 
 // `m` must be a closed, edge-manifold, outward-oriented mesh (see make_solid) and `hull` its hull.

@@ -51,6 +51,8 @@ struct Solid
 Solid make_solid(const TriMesh& input);
 
 double signed_volume(const TriMesh& m);
+// Adds `from`'s vertices and faces to `to` (disjoint union).
+void append(TriMesh& to, const TriMesh& from);
 double bbox_diagonal(const std::vector<Vec3>& pts);
 // A size that does not change with pose: twice the largest distance from the vertices' centroid
 // (an axis-aligned box diagonal grows by up to sqrt(3) under rotation).
@@ -62,7 +64,6 @@ double extent(const std::vector<Vec3>& pts);
 // (mirror-symmetric notches, equally reflex edges) the same way in every pose.
 struct PoseFrame
 {
-	Vec3            origin = Vec3::Zero();
 	Eigen::Matrix3d axes = Eigen::Matrix3d::Identity();   // rows: major, middle, minor axis
 	double          tol = 0;                               // coordinates closer than this are equal
 	// Does a come before b? Compares coordinates along the axes in turn; false when all are equal.
