@@ -7,7 +7,8 @@ here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
 source "$here/env.sh"
 bash "$here/fetch_deps.sh" >/dev/null
 
-APT_PKGS=(libqt5svg5-dev qttools5-dev xvfb xdotool x11-utils imagemagick)
+# Qt's SVG and tools for MeshLab; Xvfb, xdotool, ImageMagick, Mesa's software GL and a font for its test
+APT_PKGS=(libqt5svg5-dev qttools5-dev xvfb xdotool x11-utils imagemagick libgl1-mesa-dri fonts-dejavu-core)
 missing=()
 for p in "${APT_PKGS[@]}"; do
 	dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

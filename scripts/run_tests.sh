@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# Every test: the core's C++ tests (ctest) and the pytest suite through pymeshlab.
+# Every test: the core's C++ tests (ctest), the pytest suite through pymeshlab, and the MeshLab GUI
+# test under Xvfb (ACD_SKIP_SANITIZERS=1 / ACD_SKIP_GUI=1 skip the slower targets while developing).
 set -euo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
 source "$here/env.sh"
@@ -15,11 +16,16 @@ fi
 
 echo "== pytest (through pymeshlab) =="
 set +e
-python3 -m pytest -q "$ACD_REPO/tests" "$@"
+python3 -m pytest -q --ignore="$ACD_REPO/tests/gui" "$ACD_REPO/tests" "$@"
 rc=$?
 set -e
 if [ $rc -eq 5 ]; then
 	echo "pytest collected no tests" >&2
 	exit 1
 fi
-exit $rc
+[ $rc -ne 0 ] && exit $rc
+
+if [ "${ACD_SKIP_GUI:-0}" != 1 ]; then
+	echo "== MeshLab GUI under Xvfb (builds MeshLab once, cached) =="
+	bash "$here/run_gui_test.sh"
+fi
