@@ -71,6 +71,49 @@ def torus(R=2.0, r=0.5, nu=48, nv=16):
     return V, np.array(F, np.int32)
 
 
+def icosphere(centre=(0, 0, 0), radius=1.0, level=2):
+    """Outward unit icosphere, subdivided `level` times, scaled and moved."""
+    t = (1 + 5 ** 0.5) / 2
+    V = [(-1, t, 0), (1, t, 0), (-1, -t, 0), (1, -t, 0), (0, -1, t), (0, 1, t), (0, -1, -t), (0, 1, -t),
+         (t, 0, -1), (t, 0, 1), (-t, 0, -1), (-t, 0, 1)]
+    V = [np.array(v, float) / np.linalg.norm(v) for v in V]
+    F = [(0, 11, 5), (0, 5, 1), (0, 1, 7), (0, 7, 10), (0, 10, 11), (1, 5, 9), (5, 11, 4), (11, 10, 2),
+         (10, 7, 6), (7, 1, 8), (3, 9, 4), (3, 4, 2), (3, 2, 6), (3, 6, 8), (3, 8, 9), (4, 9, 5), (2, 4, 11),
+         (6, 2, 10), (8, 6, 7), (9, 8, 1)]
+    for _ in range(level):
+        mid, nf = {}, []
+
+        def m(a, b):
+            k = (min(a, b), max(a, b))
+            if k not in mid:
+                p = V[a] + V[b]
+                V.append(p / np.linalg.norm(p))
+                mid[k] = len(V) - 1
+            return mid[k]
+        for a, b, c in F:
+            ab, bc, ca = m(a, b), m(b, c), m(c, a)
+            nf += [(a, ab, ca), (b, bc, ab), (c, ca, bc), (ab, bc, ca)]
+        F = nf
+    return np.array(V) * radius + np.asarray(centre, float), np.array(F, np.int32)
+
+
+def box(lo=(-1, -1, -1), hi=(1, 1, 1)):
+    """Outward axis-aligned box: (vertices, faces)."""
+    V, F = extrude([(lo[0], lo[1]), (hi[0], lo[1]), (hi[0], hi[1]), (lo[0], hi[1])], lo[2], hi[2])
+    return V, F
+
+
+def with_cavities(outer, cavities):
+    """A solid: the outer shell as given, each cavity shell turned inward."""
+    V, F = [np.asarray(outer[0], float)], [np.asarray(outer[1])]
+    n = len(V[0])
+    for Vc, Fc in cavities:
+        V.append(np.asarray(Vc, float))
+        F.append(np.asarray(Fc)[:, ::-1] + n)
+        n += len(Vc)
+    return np.concatenate(V), np.concatenate(F).astype(np.int32)
+
+
 def add_mesh(ms, V, F, name="input"):
     ms.add_mesh(pymeshlab.Mesh(vertex_matrix=np.asarray(V, float), face_matrix=np.asarray(F, np.int32)), name)
 

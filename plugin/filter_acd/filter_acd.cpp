@@ -15,6 +15,8 @@
 
 #include <QFile>
 
+#include <algorithm>
+#include <array>
 #include <chrono>
 #include <fstream>
 #include <unistd.h>
@@ -25,6 +27,8 @@ const QStringList kCutPlaneLabels = {"best", "bisector"};
 const QStringList kTauUnitLabels  = {"percent_of_size", "model_units"};
 const QStringList kPreprocessingLabels = {"none", "alpha_wrap"};
 const QStringList kSelfIntersectionLabels = {"warn", "refuse"};
+const QStringList kHoleHandlingLabels = {"best_plane", "principal_plane", "keep_cavities"};
+const QStringList kHoleOrderLabels    = {"first", "by_concavity"};
 
 QString self_intersection_message(long n)
 {
@@ -177,6 +181,18 @@ RichParameterList FilterACD::initParameterList(const QAction* a, const MeshModel
 		"best: try several planes through the notch (the bisector, planes around its retraction "
 		"direction, the plane parallel to its bridge) and keep the one leaving the least concave parts; "
 		"bisector: the paper's plane through the notch edge bisecting its reflex angle (faster)."));
+	p.addParam(RichEnum(
+		"hole_handling", 0, kHoleHandlingLabels, "Cavities (hole boundaries)",
+		"How closed inner shells (cavities) are resolved; their notches never reach the hull. "
+		"principal_plane: the paper's cut through the cavity's centre along its principal plane (the "
+		"plane of its two major axes); best_plane: that plane, the other two principal planes and planes "
+		"through the cavity towards the nearest hull facet, keeping the one leaving the least concave "
+		"parts; keep_cavities: never cut for a cavity, measure concavity on the outer surface only and "
+		"report the cavities left inside parts (those parts are then not tau-convex)."));
+	p.addParam(RichEnum(
+		"hole_order", 0, kHoleOrderLabels, "Cavity order",
+		"first: the paper (a cavity's concavity is infinite): every cavity is cut before any notch; "
+		"by_concavity: a cavity is cut when its depth below the hull is the largest concavity left."));
 	p.addParam(RichInt(
 		"max_parts", 0, "Maximum number of parts",
 		"Stop after this many parts (0 = no limit); the most concave notches are cut first, and the "
@@ -315,12 +331,19 @@ FilterACD::decompose(const RichParameterList& par, MeshDocument& md, vcg::CallBa
 	o.cut_plane_selection = par.getEnum("cut_plane_selection") == 0 ? acd::CutPlaneSelection::Best
 	                                                                 : acd::CutPlaneSelection::Bisector;
 	o.max_parts           = par.getInt("max_parts");
+	o.hole_handling       = std::array{acd::HoleHandling::BestPlane, acd::HoleHandling::PrincipalPlane,
+                                 acd::HoleHandling::KeepCavities}[std::clamp(par.getEnum("hole_handling"), 0, 2)];
+	o.hole_order          = par.getEnum("hole_order") == 1 ? acd::HoleOrder::ByConcavity : acd::HoleOrder::First;
 	o.time_limit_seconds  = par.getFloat("time_limit");
 	if (o.max_parts < 0) throw MLException("max_parts must be 0 (no limit) or positive.");
 	if (o.time_limit_seconds < 0) throw MLException("time_limit must be 0 (no limit) or positive.");
 	if (cb) o.progress = [cb](int pct, const char* msg) { return cb(pct, msg); };
 
-	if (s.flipped) log("The mesh was oriented inward; the decomposition uses it turned outward.");
+	if (s.reoriented_shells > 0)
+		log("%d of %d shells were oriented against their nesting (outer shells outward, cavities inward) and "
+		    "were turned.", s.reoriented_shells, s.shells);
+	else if (s.flipped) log("The mesh was oriented inward; the decomposition uses it turned outward.");
+	if (s.cavities > 0) log("The solid has %d cavities (closed inner shells).", s.cavities);
 	if (s.unreferenced_vertices > 0) log("%d unreferenced vertices were ignored.", s.unreferenced_vertices);
 	if (s.split_vertices > 0) log("%d non-manifold vertices were split into one copy per fan.", s.split_vertices);
 	acd::Decomposition d = acd::decompose(s, o);
@@ -362,6 +385,9 @@ FilterACD::decompose(const RichParameterList& par, MeshDocument& md, vcg::CallBa
 	    idx, o.tau, d.max_leaf_concavity(), secs,
 	    d.max_parts_reached ? " (max_parts reached: some parts exceed tau)" : "");
 	if (uncut > 0) log("Warning: %d parts above tau could not be cut by any candidate plane", uncut);
+	if (d.kept_cavities > 0)
+		log("Warning: %d cavities were kept inside parts (keep_cavities); those parts are not tau-convex.",
+		    d.kept_cavities);
 	return {
 		{"parts", idx},
 		{"tau", o.tau},
@@ -376,6 +402,10 @@ FilterACD::decompose(const RichParameterList& par, MeshDocument& md, vcg::CallBa
 		{"tree_nodes", (int) d.nodes.size()},
 		{"alpha_wrapped", par.getEnum("preprocessing") == 1},
 		{"self_intersections", (int) s.self_intersections},
+		{"cavities", s.cavities},
+		{"hole_cuts", d.hole_cuts},
+		{"kept_cavities", d.kept_cavities},
+		{"tau_convex", d.kept_cavities == 0 && d.max_leaf_concavity() <= o.tau},
 	};
 }
 

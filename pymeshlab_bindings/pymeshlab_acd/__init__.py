@@ -96,7 +96,8 @@ def decompose(ms, **params):
     """Decompose the current mesh. Returns (result dict with the tree under "tree", part layer ids).
 
     Parameters are the filter's (tau, tau_unit, cut_plane_selection, max_parts, output_hulls,
-    max_hull_vertices, preprocessing, wrap_alpha, wrap_offset, on_self_intersection, time_limit). The tree is read from a temporary JSON file the filter writes.
+    max_hull_vertices, hole_handling, hole_order, preprocessing, wrap_alpha, wrap_offset,
+    on_self_intersection, time_limit). The tree is read from a temporary JSON file the filter writes.
     """
     import tempfile
     before = set(mesh_ids(ms))

@@ -49,7 +49,8 @@ def cmd_decompose(a):
     params = dict(tau=a.tau, tau_unit=a.tau_unit, cut_plane_selection=a.cut_plane_selection,
                   max_parts=a.max_parts, output_hulls=a.hulls, max_hull_vertices=a.max_hull_vertices,
                   time_limit=a.time_limit, preprocessing=a.preprocessing, wrap_alpha=a.wrap_alpha,
-                  wrap_offset=a.wrap_offset, on_self_intersection=a.on_self_intersection)
+                  wrap_offset=a.wrap_offset, on_self_intersection=a.on_self_intersection,
+                  hole_handling=a.hole_handling, hole_order=a.hole_order)
     t0 = time.perf_counter()
     res, ids = decompose(ms, **params)
     wall = time.perf_counter() - t0
@@ -61,6 +62,9 @@ def cmd_decompose(a):
     print(f"time             {res['time']:.2f} s (wall {wall:.2f} s)")
     if res["max_parts_reached"]:
         print("note             max_parts reached: some parts exceed tau")
+    if res.get("cavities"):
+        print(f"cavities         {res['cavities']} in the input; {res['hole_cuts']} cuts through cavities"
+              + (f"; {res['kept_cavities']} kept inside parts (not tau-convex)" if res["kept_cavities"] else ""))
     if res.get("self_intersections"):
         print(f"note             the mesh intersects itself ({res['self_intersections']} face pairs cross)")
     if a.out:
@@ -91,6 +95,10 @@ def main(argv=None):
     d.add_argument("--tau-unit", default="percent_of_size", choices=["percent_of_size", "model_units"])
     d.add_argument("--cut-plane-selection", default="best", choices=["best", "bisector"])
     d.add_argument("--max-parts", type=int, default=0)
+    d.add_argument("--hole-handling", default="best_plane", choices=["best_plane", "principal_plane", "keep_cavities"],
+                   help="how cavities (closed inner shells) are resolved")
+    d.add_argument("--hole-order", default="first", choices=["first", "by_concavity"],
+                   help="cut cavities before notches (the paper) or in turn by concavity")
     d.add_argument("--hulls", action="store_true", help="also output each part's convex hull")
     d.add_argument("--max-hull-vertices", type=int, default=0)
     d.add_argument("--time-limit", type=float, default=0.0)

@@ -1,6 +1,8 @@
 #include "acd/decompose.h"
 #include "acd/parallel.h"
 
+#include <Eigen/Eigenvalues>
+
 #include <CGAL/Cartesian_d.h>
 #include <CGAL/Min_sphere_of_points_d_traits_3.h>
 #include <CGAL/Min_sphere_of_spheres_d.h>
@@ -29,19 +31,73 @@ double enclosing_diameter(const std::vector<Vec3>& pts)
 
 namespace {
 
-// What cutting a node needs from its measure; kept while the node waits to be cut.
+// The faces of each cavity (a shell of negative volume) of a solid.
+std::vector<std::vector<int>> cavity_faces(const TriMesh& m)
+{
+	int                           n = 0;
+	const std::vector<int>        comp = face_components(m, &n);
+	std::vector<std::vector<int>> shell(n);
+	for (int f = 0; f < (int) m.F.size(); ++f) shell[comp[f]].push_back(f);
+	std::vector<std::vector<int>> out;
+	if (n < 2) return out;
+	for (auto& faces : shell) {
+		TriMesh sh;
+		sh.V = m.V;
+		for (int f : faces) sh.F.push_back(m.F[f]);
+		if (signed_volume(sh) < 0) out.push_back(std::move(faces));
+	}
+	return out;
+}
+
+// The solid without its cavities (the same vertex array; unused vertices are harmless to the hull
+// only if dropped, so they are).
+TriMesh outer_surface(const TriMesh& m, const std::vector<std::vector<int>>& cavities)
+{
+	std::vector<char> drop(m.F.size(), 0);
+	for (const auto& c : cavities)
+		for (int f : c) drop[f] = 1;
+	TriMesh          out;
+	std::vector<int> id(m.V.size(), -1);
+	for (int f = 0; f < (int) m.F.size(); ++f) {
+		if (drop[f]) continue;
+		Tri t;
+		for (int k = 0; k < 3; ++k) {
+			int& i = id[m.F[f][k]];
+			if (i < 0) {
+				i = (int) out.V.size();
+				out.V.push_back(m.V[m.F[f][k]]);
+			}
+			t[k] = i;
+		}
+		out.F.push_back(t);
+	}
+	return out;
+}
+
+// What cutting a node needs from its measure; kept while the node waits to be cut. With
+// keep_cavities only the outer surface is measured (a cavity never retracts to the hull).
 struct Measured
 {
-	Topology        topo;
-	ConvexHull      hull;
-	ConcavityReport rep;
-	explicit Measured(const TriMesh& m) : topo(m), hull(m.V), rep(measure_concavity(m, topo, hull)) {}
+	std::vector<std::vector<int>> cavities;   // faces of each cavity of the node's mesh
+	TriMesh                       outer;      // keep_cavities with cavities: the measured surface
+	Topology                      topo;
+	ConvexHull                    hull;
+	ConcavityReport               rep;
+	Measured(const TriMesh& m, bool keep_cavities)
+	    : cavities(cavity_faces(m)),
+	      outer(keep_cavities && !cavities.empty() ? outer_surface(m, cavities) : TriMesh()),
+	      topo(surface(m)), hull(surface(m).V), rep(measure_concavity(surface(m), topo, hull))
+	{
+	}
+	// What topo, hull and rep describe: the node's mesh `m` itself, or its outer surface. (The node's
+	// mesh is passed in, not kept: nodes move when the tree grows.)
+	const TriMesh& surface(const TriMesh& m) const { return outer.F.empty() ? m : outer; }
 };
 
 // A candidate cut's parts scored by the paper's measure itself (the same one the recursion uses).
-double part_concavity(const TriMesh& m)
+double part_concavity(const TriMesh& m, bool keep_cavities)
 {
-	return Measured(m).rep.max_concavity;
+	return Measured(m, keep_cavities).rep.max_concavity;
 }
 
 Plane through(const Vec3& p, Vec3 n)
@@ -53,6 +109,51 @@ Plane through(const Vec3& p, Vec3 n)
 }
 
 } // namespace
+
+std::vector<Plane> cavity_planes(const TriMesh& m, const std::vector<int>& faces, const ConvexHull& hull,
+                                 HoleHandling handling, int around, Vec3& centre)
+{
+	// Area-weighted moments of the cavity's surface: its vertices alone would follow the sampling.
+	double          area = 0;
+	Vec3            c    = Vec3::Zero();
+	Eigen::Matrix3d M    = Eigen::Matrix3d::Zero();
+	for (int f : faces) {
+		const Vec3 &a = m.V[m.F[f][0]], &b = m.V[m.F[f][1]], &d = m.V[m.F[f][2]];
+		const double w = 0.5 * (b - a).cross(d - a).norm();
+		area += w;
+		c += w * (a + b + d) / 3;
+		// second moment of the triangle about the origin
+		M += w / 12 * (a * a.transpose() + b * b.transpose() + d * d.transpose() +
+		               (a + b + d) * (a + b + d).transpose());
+	}
+	std::vector<Plane> out;
+	if (!(area > 0)) return out;
+	c /= area;
+	centre = c;
+	const Eigen::Matrix3d cov = M / area - c * c.transpose();
+	Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es(cov);   // eigenvalues ascending
+	// The principal plane contains the two major axes: its normal is the minor axis.
+	for (int k = 0; k < 3; ++k) {
+		if (handling != HoleHandling::BestPlane && k > 0) break;
+		out.push_back(through(c, es.eigenvectors().col(k)));
+	}
+	if (handling == HoleHandling::BestPlane) {
+		// Planes containing the way out: from the centre towards the nearest hull facet.
+		int        tri = -1;
+		hull.distance_to_boundary(c, &tri);
+		const Vec3 up = tri >= 0 ? hull.facet_plane[hull.triangle_facet[tri]].n : es.eigenvectors().col(0);
+		// angles start from the cavity's major axis, so the fan turns with the object
+		Vec3 u = es.eigenvectors().col(2) - up * up.dot(es.eigenvectors().col(2));
+		if (u.norm() < 1e-9) u = es.eigenvectors().col(1) - up * up.dot(es.eigenvectors().col(1));
+		u.normalize();
+		const Vec3 w = up.cross(u);
+		for (int k = 0; k < around; ++k) {
+			const double th = M_PI * k / around;
+			out.push_back(through(c, std::cos(th) * u + std::sin(th) * w));
+		}
+	}
+	return out;
+}
 
 std::vector<Plane> candidate_planes(const TriMesh& m, const Topology& topo, const ConvexHull& hull,
                                     const ConcavityReport& rep, CutPlaneSelection sel, int around)
@@ -133,6 +234,7 @@ std::string Decomposition::to_json() const
 	std::ostringstream o;
 	o.precision(17);
 	o << "{\"tau\":" << tau << ",\"max_parts_reached\":" << (max_parts_reached ? "true" : "false")
+	  << ",\"hole_cuts\":" << hole_cuts << ",\"kept_cavities\":" << kept_cavities
 	  << ",\"nodes\":[";
 	for (size_t i = 0; i < nodes.size(); ++i) {
 		const Node& n = nodes[i];
@@ -140,7 +242,8 @@ std::string Decomposition::to_json() const
 		  << ",\"children\":[" << n.child[0] << "," << n.child[1] << "]"
 		  << ",\"concavity\":" << n.concavity << ",\"volume\":" << n.volume << ",\"notches\":" << n.notches
 		  << ",\"leaf\":" << (n.leaf() ? "true" : "false") << ",\"uncut\":" << (n.uncut ? "true" : "false")
-		  << ",\"solids\":" << (n.solids ? "true" : "false");
+		  << ",\"solids\":" << (n.solids ? "true" : "false") << ",\"cavities\":" << n.cavities
+		  << ",\"hole_cut\":" << (n.hole_cut ? "true" : "false");
 		if (n.concavity > 0)
 			o << ",\"notch\":[" << n.notch.x() << "," << n.notch.y() << "," << n.notch.z() << "]";
 		if (n.has_plane)
@@ -208,14 +311,18 @@ Decomposition decompose_normalized(const Solid& solid, const DecomposeOptions& o
 		measured.emplace_back();
 		return (int) D.nodes.size() - 1;
 	};
+	const bool keep = opt.hole_handling == HoleHandling::KeepCavities;
+	// A node is done when it is tau-convex and (unless they are kept) has no cavity left.
+	auto needs_cut = [&](const Node& n) { return n.concavity > opt.tau || (!keep && n.cavities > 0); };
 	auto measure_node = [&](int id) {
 		Node& n         = D.nodes[id];
-		auto  ms        = std::make_unique<Measured>(n.mesh);
+		auto  ms        = std::make_unique<Measured>(n.mesh, keep);
 		n.concavity     = ms->rep.max_concavity;
 		n.volume        = signed_volume(n.mesh);
 		n.notches       = ms->rep.notches;
-		if (ms->rep.max_vertex >= 0) n.notch = n.mesh.V[ms->rep.max_vertex];
-		if (n.concavity > opt.tau) measured[id] = std::move(ms);
+		n.cavities      = (int) ms->cavities.size();
+		if (ms->rep.max_vertex >= 0) n.notch = ms->surface(n.mesh).V[ms->rep.max_vertex];
+		if (needs_cut(n)) measured[id] = std::move(ms);
 	};
 
 	// Several solids (disjoint shells): no notch lies between them, so the measure would call the
@@ -248,17 +355,21 @@ Decomposition decompose_normalized(const Solid& solid, const DecomposeOptions& o
 		c0 = std::max(c0, D.nodes[id].concavity);
 	}
 
-	// Open nodes, most concave first (ties by path), so a max_parts bound cuts the worst notches.
+	// Open nodes, most concave first (ties by path), so a max_parts bound cuts the worst notches;
+	// with hole_order = first, nodes holding a cavity come before all others (infinite concavity).
 	auto worse = [&](int a, int b) {
-		if (D.nodes[a].concavity != D.nodes[b].concavity) return D.nodes[a].concavity < D.nodes[b].concavity;
-		return D.nodes[a].path > D.nodes[b].path;
+		const Node &A = D.nodes[a], &B = D.nodes[b];
+		if (needs_cut(A) != needs_cut(B)) return !needs_cut(A);
+		if (opt.hole_order == HoleOrder::First && !keep && (A.cavities > 0) != (B.cavities > 0)) return A.cavities == 0;
+		if (A.concavity != B.concavity) return A.concavity < B.concavity;
+		return A.path > B.path;
 	};
 	std::priority_queue<int, std::vector<int>, decltype(worse)> open(worse);
 	for (int id : first_open) open.push(id);
 	int parts = (int) first_open.size();
 	while (!open.empty()) {
 		const int id = open.top();
-		if (D.nodes[id].concavity <= opt.tau) break;   // every open node is within tau
+		if (!needs_cut(D.nodes[id])) break;   // every open node is done
 		if (opt.max_parts > 0 && parts >= opt.max_parts) {
 			D.max_parts_reached = true;
 			break;
@@ -286,20 +397,45 @@ Decomposition decompose_normalized(const Solid& solid, const DecomposeOptions& o
 
 		const TriMesh&  mesh = D.nodes[id].mesh;
 		const Measured& ms   = *measured[id];
-		std::vector<Plane> planes = candidate_planes(mesh, ms.topo, ms.hull, ms.rep, opt.cut_plane_selection,
-		                                             opt.candidate_planes);
-		if (opt.cut_plane_selection == CutPlaneSelection::Bisector && planes.size() == 1) {
-			// Fall back to the other candidates only if the bisector cannot split.
-			auto more = candidate_planes(mesh, ms.topo, ms.hull, ms.rep, CutPlaneSelection::Best, opt.candidate_planes);
-			planes.insert(planes.end(), more.begin() + std::min<size_t>(1, more.size()), more.end());
+
+		// A cavity is cut when holes go first, when the most concave notch lies on one, or when
+		// only cavities are left; the deepest cavity (or the notch's) is the one cut.
+		int hole = -1;
+		if (!keep && !ms.cavities.empty()) {
+			int    deepest = -1;
+			bool   notch_on_cavity = false;
+			double depth = -1;
+			for (int c = 0; c < (int) ms.cavities.size(); ++c)
+				for (int f : ms.cavities[c])
+					for (int v : mesh.F[f]) {
+						notch_on_cavity |= v == ms.rep.max_vertex;
+						if (ms.rep.vertex_concavity[v] > depth) depth = ms.rep.vertex_concavity[v], deepest = c;
+					}
+			if (opt.hole_order == HoleOrder::First || notch_on_cavity || D.nodes[id].concavity <= opt.tau)
+				hole = deepest;
 		}
-		const Vec3 notch = mesh.V[ms.rep.max_vertex];
+		std::vector<Plane> planes;
+		Vec3               notch;
+		if (hole >= 0) planes = cavity_planes(mesh, ms.cavities[hole], ms.hull, opt.hole_handling, opt.candidate_planes, notch);
+		else {
+			planes = candidate_planes(ms.surface(mesh), ms.topo, ms.hull, ms.rep, opt.cut_plane_selection, opt.candidate_planes);
+			if (opt.cut_plane_selection == CutPlaneSelection::Bisector && planes.size() == 1) {
+				// Fall back to the other candidates only if the bisector cannot split.
+				auto more = candidate_planes(ms.surface(mesh), ms.topo, ms.hull, ms.rep, CutPlaneSelection::Best, opt.candidate_planes);
+				planes.insert(planes.end(), more.begin() + std::min<size_t>(1, more.size()), more.end());
+			}
+			notch = ms.surface(mesh).V[ms.rep.max_vertex];
+		}
+		// Try planes in order and keep the first that splits (the paper's planes), or score them all.
+		const bool first_fit = hole >= 0 ? opt.hole_handling != HoleHandling::BestPlane
+		                                 : opt.cut_plane_selection == CutPlaneSelection::Bisector;
 
 		// Split and score every candidate plane; candidates are independent, so use all cores.
 		struct Trial
 		{
 			SplitOutcome so;
 			bool         ok = false;
+			bool         crosses = false;   // keep_cavities: the plane cuts through a kept cavity
 			double       score = 0, sum = 0;
 		};
 		std::vector<Trial> trials(planes.size());
@@ -309,12 +445,19 @@ Decomposition decompose_normalized(const Solid& solid, const DecomposeOptions& o
             if (!separate(mesh, planes[i], notch, t.so)) return;
             // A plane that grazes the part shaves off a sliver and resolves nothing.
             if (signed_volume(t.so.parts[0]) < 1e-5 * v0 || signed_volume(t.so.parts[1]) < 1e-5 * v0) return;
-            if (opt.cut_plane_selection == CutPlaneSelection::Bisector) {
+            if (keep)
+                for (const auto& c : ms.cavities) {
+                    bool neg = false, pos = false;
+                    for (int f : c)
+                        for (int v : mesh.F[f]) (planes[i].eval(mesh.V[v]) > 0 ? pos : neg) = true;
+                    t.crosses |= neg && pos;
+                }
+            if (first_fit) {
                 t.ok = true;
                 return;
             }
             try {
-                const double a = part_concavity(t.so.parts[0]), b = part_concavity(t.so.parts[1]);
+                const double a = part_concavity(t.so.parts[0], keep), b = part_concavity(t.so.parts[1], keep);
                 t.score = std::max(a, b);
                 t.sum   = a + b;
                 t.ok    = true;
@@ -322,11 +465,11 @@ Decomposition decompose_normalized(const Solid& solid, const DecomposeOptions& o
             catch (const Error&) {   // a part with no volume
             }
 		};
-		if (opt.cut_plane_selection == CutPlaneSelection::Bisector) {
+		if (first_fit) {
 			// The paper's plane first; the others only if it cannot split.
 			for (size_t i = 0; i < planes.size(); ++i) {
 				run_trial(i);
-				if (trials[i].ok) break;
+				if (trials[i].ok && !trials[i].crosses) break;
 			}
 		}
 		else parallel_for(planes.size(), run_trial);
@@ -337,14 +480,19 @@ Decomposition decompose_normalized(const Solid& solid, const DecomposeOptions& o
 		// settled by the total concavity.
 		const double hair = 1e-6 * extent(mesh.V);
 		int          pick = -1;
-		for (int i = 0; i < (int) trials.size(); ++i) {
-			const Trial& t = trials[i];
-			if (!t.ok) continue;
-			if (pick < 0 || t.score < trials[pick].score - hair ||
-			    (t.score <= trials[pick].score + hair && t.sum < trials[pick].sum - hair))
-				pick = i;
+		for (const bool allow_crossing : {false, true}) {   // planes that spare kept cavities first
+			for (int i = 0; i < (int) trials.size(); ++i) {
+				const Trial& t = trials[i];
+				if (!t.ok || (t.crosses && !allow_crossing)) continue;
+				if (pick < 0 || t.score < trials[pick].score - hair ||
+				    (t.score <= trials[pick].score + hair && t.sum < trials[pick].sum - hair))
+					pick = i;
+			}
+			if (pick >= 0) break;
 		}
-		if (pick > 0 && trials[0].ok && !(trials[pick].score < 0.9 * trials[0].score)) pick = 0;
+		// For a notch (not a cavity, whose planes are all scored alike): see above.
+		if (hole < 0 && pick > 0 && trials[0].ok && !trials[0].crosses && !(trials[pick].score < 0.9 * trials[0].score))
+			pick = 0;
 		const bool   found = pick >= 0;
 		SplitOutcome best;
 		if (found) best = std::move(trials[pick].so);
@@ -355,6 +503,8 @@ Decomposition decompose_normalized(const Solid& solid, const DecomposeOptions& o
 		}
 		D.nodes[id].has_plane = true;
 		D.nodes[id].plane     = best.plane;
+		D.nodes[id].hole_cut  = hole >= 0;
+		D.hole_cuts += hole >= 0;
 		const std::string path = D.nodes[id].path;
 		for (int s = 0; s < 2; ++s) {
 			const int c          = add_node(std::move(best.parts[s]), id, path + char('0' + s));
@@ -371,6 +521,8 @@ Decomposition decompose_normalized(const Solid& solid, const DecomposeOptions& o
 			             D.nodes[D.nodes[id].child[1]].concavity, D.nodes[D.nodes[id].child[0]].mesh.F.size(),
 			             D.nodes[D.nodes[id].child[1]].mesh.F.size());
 	}
+	if (keep)
+		for (int l : D.leaves()) D.kept_cavities += D.nodes[l].cavities;
 	if (opt.progress) opt.progress(100, "Decomposition done");
 	return D;
 }

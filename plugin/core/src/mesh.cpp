@@ -144,6 +144,74 @@ std::vector<int> face_components(const TriMesh& m, int* count)
 	return comp;
 }
 
+bool inside(const TriMesh& m, const Vec3& p)
+{
+	// A direction unlikely to graze edges of axis-aligned or symmetric meshes.
+	const Vec3 dir = Vec3(0.5773502691896258, 0.5773502691896257, 0.5773502691896259).normalized() +
+	                 Vec3(1e-3, -2e-3, 3e-3);
+	int hits = 0;
+	for (const Tri& t : m.F) {
+		const Vec3 &a = m.V[t[0]], &b = m.V[t[1]], &c = m.V[t[2]];
+		Vec3   e1 = b - a, e2 = c - a, h = dir.cross(e2);
+		double det = e1.dot(h);
+		if (std::abs(det) < 1e-300) continue;
+		Vec3   sv = p - a;
+		double uu = sv.dot(h) / det;
+		if (uu < 0 || uu > 1) continue;
+		Vec3   q  = sv.cross(e1);
+		double vv = dir.dot(q) / det;
+		if (vv < 0 || uu + vv > 1) continue;
+		if (e2.dot(q) / det > 0) ++hits;
+	}
+	return hits % 2 == 1;
+}
+
+namespace {
+
+// Orient every shell by how deeply it is nested (point in solid, not bounding boxes): even depth
+// bounds material from outside (outward), odd depth is a cavity (inward). Shells given the wrong
+// way round are turned. Bounding boxes only skip shells that cannot contain the probe point.
+void orient_by_nesting(Solid& s, const std::vector<int>& comp, int ncomp)
+{
+	std::vector<TriMesh> shell(ncomp);
+	for (int f = 0; f < (int) s.mesh.F.size(); ++f) shell[comp[f]].F.push_back(s.mesh.F[f]);
+	std::vector<Eigen::AlignedBox3d> box(ncomp);
+	for (int c = 0; c < ncomp; ++c) {
+		shell[c].V = s.mesh.V;   // shared vertex array: inside() reads only the faces' corners
+		for (const Tri& t : shell[c].F)
+			for (int v : t) box[c].extend(s.mesh.V[v]);
+	}
+	std::vector<char> flip(ncomp, 0);
+	for (int c = 0; c < ncomp; ++c) {
+		// The shell's extreme vertices along each axis: all inside another shell means nested in it.
+		std::array<Vec3, 6> probe;
+		probe.fill(s.mesh.V[shell[c].F[0][0]]);
+		for (const Tri& t : shell[c].F)
+			for (int v : t)
+				for (int k = 0; k < 3; ++k) {
+					const Vec3& p = s.mesh.V[v];
+					if (p[k] < probe[2 * k][k]) probe[2 * k] = p;
+					if (p[k] > probe[2 * k + 1][k]) probe[2 * k + 1] = p;
+				}
+		int depth = 0;
+		for (int o = 0; o < ncomp; ++o) {
+			if (o == c || !box[o].contains(box[c])) continue;
+			bool all = true;
+			for (const Vec3& p : probe) all = all && inside(shell[o], p);
+			depth += all;
+		}
+		const bool cavity = depth % 2 == 1;
+		s.cavities += cavity;
+		flip[c] = (signed_volume(shell[c]) > 0) == cavity;
+		s.reoriented_shells += flip[c];
+	}
+	for (int f = 0; f < (int) s.mesh.F.size(); ++f)
+		if (flip[comp[f]]) std::swap(s.mesh.F[f][1], s.mesh.F[f][2]);
+	s.flipped = s.reoriented_shells > 0;
+}
+
+} // namespace
+
 Solid make_solid(const TriMesh& in)
 {
 	if (in.V.empty()) invalid("The mesh is empty: it has no vertices.");
@@ -295,7 +363,11 @@ Solid make_solid(const TriMesh& in)
 		}
 	}
 
-	face_components(s.mesh, &s.shells);
+	const std::vector<int> comp = face_components(s.mesh, &s.shells);
+	// Nesting costs shells x faces ray tests; beyond a few hundred shells (debris, particle sets)
+	// the shells keep their given orientation.
+	// Shells that cross each other (counted above) have no nesting to go by.
+	if (s.shells > 1 && s.shells <= 256 && s.self_intersections == 0) orient_by_nesting(s, comp, s.shells);
 	s.volume = signed_volume(s.mesh);
 	if (!(std::abs(s.volume) > 1e-12 * diag * diag * diag))
 		invalid("The mesh encloses no volume (it is flat or its shells cancel out).");

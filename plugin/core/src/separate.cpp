@@ -310,28 +310,6 @@ std::vector<TriMesh> connected_solids(const TriMesh& all)
 	return solids;
 }
 
-bool inside(const TriMesh& m, const Vec3& p)
-{
-	// A direction unlikely to graze edges of axis-aligned or symmetric meshes.
-	const Vec3 dir = Vec3(0.5773502691896258, 0.5773502691896257, 0.5773502691896259).normalized() +
-	                 Vec3(1e-3, -2e-3, 3e-3);
-	int hits = 0;
-	for (const Tri& t : m.F) {
-		const Vec3 &a = m.V[t[0]], &b = m.V[t[1]], &c = m.V[t[2]];
-		Vec3   e1 = b - a, e2 = c - a, h = dir.cross(e2);
-		double det = e1.dot(h);
-		if (std::abs(det) < 1e-300) continue;
-		Vec3   sv = p - a;
-		double uu = sv.dot(h) / det;
-		if (uu < 0 || uu > 1) continue;
-		Vec3   q  = sv.cross(e1);
-		double vv = dir.dot(q) / det;
-		if (vv < 0 || uu + vv > 1) continue;
-		if (e2.dot(q) / det > 0) ++hits;
-	}
-	return hits % 2 == 1;
-}
-
 bool separate(const TriMesh& m, const Plane& plane, const Vec3& notch, SplitOutcome& out)
 {
 	// Keep every vertex clearly off the plane (the paper's perturbation of vertices on the plane):

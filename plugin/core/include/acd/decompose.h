@@ -17,12 +17,30 @@ enum class CutPlaneSelection
 	            // parallel to its bridge), keeping the one whose parts are least concave
 };
 
+// Cavities (closed inner shells) are the paper's hole boundaries: their notches can never retract to
+// the hull, so they are resolved by cuts through the cavity itself.
+enum class HoleHandling
+{
+	PrincipalPlane,   // the paper: the plane through the cavity's centre spanned by its two major axes
+	BestPlane,        // the three principal planes and planes through the cavity towards the hull,
+	                  // keeping the one whose parts are least concave
+	KeepCavities      // never cut for a cavity: measure the outer surface only, report the cavities
+};
+
+enum class HoleOrder
+{
+	First,        // the paper (a hole's concavity is infinite): every cavity is cut before any notch
+	ByConcavity   // a cavity's concavity is its depth below the hull; cut in turn with the notches
+};
+
 struct DecomposeOptions
 {
 	double            tau = 0;   // model units; > 0
 	CutPlaneSelection cut_plane_selection = CutPlaneSelection::Best;
 	int               max_parts = 0;          // 0 = unbounded
 	int               candidate_planes = 6;   // planes around the retraction direction (Best)
+	HoleHandling      hole_handling = HoleHandling::BestPlane;
+	HoleOrder         hole_order = HoleOrder::First;
 	double            time_limit_seconds = 0; // 0 = none
 	// Called with a percentage and a short status; return false to cancel (throws Error(Cancelled)).
 	std::function<bool(int, const char*)> progress;
@@ -41,6 +59,8 @@ struct Node
 	Plane       plane;
 	bool        uncut = false;     // leaf above tau because no plane split it (reported)
 	bool        solids = false;    // split into its disjoint solids (first one | the rest), not by a plane
+	int         cavities = 0;      // closed inner shells in this node's solid
+	bool        hole_cut = false;  // the cut went through a cavity (hole_handling's plane)
 	TriMesh     mesh;              // the node's solid
 	bool        leaf() const { return child[0] < 0; }
 };
@@ -51,6 +71,8 @@ struct Decomposition
 	double            tau = 0;
 	bool              max_parts_reached = false;
 	bool              time_limit_reached = false;
+	int               hole_cuts = 0;       // cuts made to resolve cavities
+	int               kept_cavities = 0;   // cavities left in the parts (keep_cavities)
 	// Leaves in a stable order (by tree path).
 	std::vector<int> leaves() const;
 	double           max_leaf_concavity() const;
@@ -62,6 +84,13 @@ Decomposition decompose(const Solid& solid, const DecomposeOptions& options);
 // Candidate cutting planes through the notch vertex `r` of mesh `m`, best guess first.
 std::vector<Plane> candidate_planes(const TriMesh& m, const Topology& topo, const ConvexHull& hull,
                                     const ConcavityReport& rep, CutPlaneSelection sel, int around);
+
+// Planes through a cavity (its vertices `cavity` of `m`) for hole_handling, the paper's first:
+// the principal plane (normal: the minor axis of the cavity surface's area-weighted covariance), then
+// for BestPlane the two other principal planes and planes containing the direction from the cavity's
+// centre to the nearest point of `hull` at `around` angles. `centre` receives the cavity's centre.
+std::vector<Plane> cavity_planes(const TriMesh& m, const std::vector<int>& cavity_faces, const ConvexHull& hull,
+                                 HoleHandling handling, int around, Vec3& centre);
 
 // Rotation-invariant size used for percentages: the diameter of the smallest enclosing sphere.
 double enclosing_diameter(const std::vector<Vec3>& pts);

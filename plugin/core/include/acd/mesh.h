@@ -42,7 +42,9 @@ struct Solid
 	int              shells = 0;            // connected components (by edges)
 	int              split_vertices = 0;    // non-manifold vertices that were split
 	int              unreferenced_vertices = 0;
-	bool             flipped = false;       // the input was inside out and has been turned outward
+	bool             flipped = false;       // the input (or some shell) was inside out and has been turned
+	int              reoriented_shells = 0; // shells whose orientation disagreed with their nesting
+	int              cavities = 0;          // shells nested inside another an odd number of times
 	long             self_intersections = 0;   // pairs of faces crossing away from shared corners
 	double           volume = 0;
 };
@@ -76,6 +78,9 @@ struct PoseFrame
 	}
 };
 PoseFrame pose_frame(const TriMesh& m);
+
+// Point-in-solid by ray parity (a closed mesh).
+bool inside(const TriMesh& m, const Vec3& p);
 
 // Connected components through shared edges; returns the component id of each face.
 std::vector<int> face_components(const TriMesh& m, int* count);

@@ -24,7 +24,4 @@ bool separate(const TriMesh& m, const Plane& plane, const Vec3& notch, SplitOutc
 // it, largest volume first. Throws Error(InvalidInput) for a cavity that no shell holds.
 std::vector<TriMesh> connected_solids(const TriMesh& m);
 
-// Point-in-solid by ray parity (a closed mesh).
-bool inside(const TriMesh& m, const Vec3& p);
-
 } // namespace acd
