@@ -9,6 +9,7 @@
 #include "meshlab_convert.h"
 
 #include <acd/decompose.h>
+#include <acd/polygon.h>
 #include <acd/preprocess.h>
 
 #include <vcg/complex/algorithms/update/color.h>
@@ -94,7 +95,7 @@ vcg::Color4b part_color(int i)
 
 FilterACD::FilterACD()
 {
-	typeList = {NOTCH_CONCAVITY, CONVEX_DECOMPOSITION};
+	typeList = {NOTCH_CONCAVITY, CONVEX_DECOMPOSITION, POLYGON_DECOMPOSITION};
 	for (ActionIDType tt : types()) actionList.push_back(new QAction(filterName(tt), this));
 }
 
@@ -105,6 +106,7 @@ QString FilterACD::filterName(ActionIDType f) const
 	switch (f) {
 	case NOTCH_CONCAVITY: return "Convex Decomposition: Notch Concavity";
 	case CONVEX_DECOMPOSITION: return "Convex Decomposition: Approximate Convex Decomposition";
+	case POLYGON_DECOMPOSITION: return "Convex Decomposition: Approximate Convex Decomposition of a Polygon";
 	default: assert(0); return QString();
 	}
 }
@@ -114,6 +116,7 @@ QString FilterACD::pythonFilterName(ActionIDType f) const
 	switch (f) {
 	case NOTCH_CONCAVITY: return "compute_scalar_by_notch_concavity";
 	case CONVEX_DECOMPOSITION: return "generate_approximate_convex_decomposition";
+	case POLYGON_DECOMPOSITION: return "generate_polygon_approximate_convex_decomposition";
 	default: assert(0); return QString();
 	}
 }
@@ -133,6 +136,15 @@ QString FilterACD::filterInfo(ActionIDType f) const
 		               "into exactly two closed parts, until every part is tau-convex. Each part becomes a new "
 		               "layer named by its path in the binary cut tree (acd_0, acd_00, acd_01, ...). The input "
 		               "layer is not modified. The whole tree is returned as JSON.") + kCitation;
+	case POLYGON_DECOMPOSITION:
+		return QString("Splits a planar polygon with holes into pieces whose concavity is at most <i>tau</i> "
+		               "(the paper's 2D algorithm): a notch's concavity is its distance to the bridge line of "
+		               "its pocket on the outer boundary's hull; the most concave notch is cut from the notch "
+		               "into the polygon, holes are cut along their principal axis. The polygon is the "
+		               "boundary of a planar triangle mesh (its boundary loops are the outline and the holes) "
+		               "or a layer of edges forming closed loops, in any plane. Each piece becomes a layer "
+		               "(a triangulated planar face mesh with its outline as edges) named by its tree path.") +
+		       kCitation;
 	default: assert(0); return QString();
 	}
 }
@@ -141,7 +153,8 @@ FilterPlugin::FilterClass FilterACD::getClass(const QAction* a) const
 {
 	switch (ID(a)) {
 	case NOTCH_CONCAVITY: return FilterClass(Quality + Measure);
-	case CONVEX_DECOMPOSITION: return FilterClass(Remeshing + Layer);
+	case CONVEX_DECOMPOSITION:
+	case POLYGON_DECOMPOSITION: return FilterClass(Remeshing + Layer);
 	default: assert(0); return Generic;
 	}
 }
@@ -166,6 +179,35 @@ int FilterACD::postCondition(const QAction* a) const
 RichParameterList FilterACD::initParameterList(const QAction* a, const MeshModel& /*m*/)
 {
 	RichParameterList p;
+	if (ID(a) == POLYGON_DECOMPOSITION) {
+		p.addParam(RichFloat(
+			"tau", 1.0, "Concavity tolerance (tau)",
+			"Largest concavity a piece may keep: with tau_unit = percent_of_size a percentage of the "
+			"diameter of the polygon's smallest enclosing circle; with model_units a length."));
+		p.addParam(RichEnum("tau_unit", 0, kTauUnitLabels, "Unit of tau",
+		                    "percent_of_size: tau is a percentage of the enclosing-circle diameter; "
+		                    "model_units: tau is a length in the layer's units."));
+		p.addParam(RichEnum(
+			"cut_line_selection", 0, kCutPlaneLabels, "Cutting line",
+			"best: try several cuts from the notch (the bisector, directions spread between its two edges' "
+			"extensions, towards nearby notches) and keep the bisector unless another leaves clearly less "
+			"concave pieces; bisector: the paper's cut along the bisector of the notch's edge normals."));
+		p.addParam(RichEnum(
+			"hole_handling", 0, kHoleHandlingLabels, "Holes",
+			"As in 3D, for a polygon's holes: principal_plane: the paper's cut along the hole's principal axis "
+			"through its centre; best_plane: that axis, the minor axis and 6 more directions through the "
+			"centre, keeping the cut leaving the least concave pieces; keep_cavities: never cut for a hole, "
+			"measure the outer boundary only and report the holes kept (those pieces are not tau-convex)."));
+		p.addParam(RichEnum("hole_order", 0, kHoleOrderLabels, "Hole order",
+		                    "first: the paper (a hole's concavity is infinite): holes are cut before any notch; "
+		                    "by_concavity: a hole is cut when its depth below the hull is the largest concavity."));
+		p.addParam(RichInt("max_parts", 0, "Maximum number of pieces",
+		                   "Stop after this many pieces (0 = no limit); the most concave notches are cut first."));
+		p.addParam(RichString("tree_file", "", "Save tree as (JSON)",
+		                      "If set, the cut tree of each polygon (nodes, paths, cuts, concavity, area) is "
+		                      "written to this JSON file. Empty: not written.", true));
+		return p;
+	}
 	if (ID(a) != CONVEX_DECOMPOSITION) return p;
 	p.addParam(RichFloat(
 		"tau", 2.0, "Concavity tolerance (tau)",
@@ -244,6 +286,7 @@ std::map<std::string, QVariant> FilterACD::applyFilter(
 	switch (ID(action)) {
 	case NOTCH_CONCAVITY: return guarded([&] { return notchConcavity(*md.mm(), cb); });
 	case CONVEX_DECOMPOSITION: return guarded([&] { return decompose(par, md, cb); });
+	case POLYGON_DECOMPOSITION: return guarded([&] { return decomposePolygon(par, md, cb); });
 	default: wrongActionCalled(action);
 	}
 	return {};
@@ -406,6 +449,110 @@ FilterACD::decompose(const RichParameterList& par, MeshDocument& md, vcg::CallBa
 		{"hole_cuts", d.hole_cuts},
 		{"kept_cavities", d.kept_cavities},
 		{"tau_convex", d.kept_cavities == 0 && d.max_leaf_concavity() <= o.tau},
+	};
+}
+
+std::map<std::string, QVariant>
+FilterACD::decomposePolygon(const RichParameterList& par, MeshDocument& md, vcg::CallBackPos* cb)
+{
+	const auto                     t0    = std::chrono::steady_clock::now();
+	MeshModel&                     input = *md.mm();
+	std::vector<std::array<int, 2>> edges;
+	const acd::TriMesh              raw = acdml::to_trimesh(input.cm, nullptr, &edges);
+	const acd::PlanarLoops          pl  = acd::planar_loops(raw.V, raw.F, edges);
+	const std::vector<acd::Polygon2> polys = acd::polygons_from_loops(pl.loops);
+
+	std::vector<acd::Vec3> pts;
+	for (const auto& P : polys)
+		for (const auto& q : P.outer) pts.push_back(pl.lift(q));
+	const double size = acd::enclosing_diameter(pts);
+	const double tau  = par.getFloat("tau");
+	if (!(tau > 0) || !std::isfinite(tau)) throw MLException(QString("tau must be positive (got %1).").arg(tau));
+	acd::DecomposeOptions o;
+	o.tau                 = par.getEnum("tau_unit") == 0 ? tau / 100.0 * size : tau;
+	o.cut_plane_selection = par.getEnum("cut_line_selection") == 0 ? acd::CutPlaneSelection::Best
+	                                                                : acd::CutPlaneSelection::Bisector;
+	o.hole_handling = std::array{acd::HoleHandling::BestPlane, acd::HoleHandling::PrincipalPlane,
+	                             acd::HoleHandling::KeepCavities}[std::clamp(par.getEnum("hole_handling"), 0, 2)];
+	o.hole_order    = par.getEnum("hole_order") == 1 ? acd::HoleOrder::ByConcavity : acd::HoleOrder::First;
+	o.max_parts     = par.getInt("max_parts");
+	if (o.max_parts < 0) throw MLException("max_parts must be 0 (no limit) or positive.");
+
+	int         pieces = 0, holes = 0, notches = 0, hole_cuts = 0, kept = 0;
+	double      max_conc = 0, root_conc = 0;
+	bool        max_reached = false;
+	std::string json = "[";
+	for (size_t k = 0; k < polys.size(); ++k) {
+		if (cb) {
+			// Each polygon's own progress, scaled into its share of the whole.
+			const int lo = (int) (100 * k / polys.size()), span = std::max<int>(1, 100 / (int) polys.size());
+			o.progress = [cb, lo, span](int pct, const char* msg) { return cb(lo + pct * span / 100, msg); };
+		}
+		const acd::Decomposition2 d = acd::decompose(polys[k], o);
+		json += (k ? "," : "") + d.to_json();
+		holes += (int) polys[k].holes.size();
+		notches += d.nodes[0].notches;
+		hole_cuts += d.hole_cuts;
+		kept += d.kept_holes;
+		max_reached |= d.max_parts_reached;
+		root_conc = std::max(root_conc, d.nodes[0].concavity);
+		max_conc  = std::max(max_conc, d.max_leaf_concavity());
+		for (int li : d.leaves()) {
+			const acd::Polygon2& piece = d.nodes[li].polygon;
+			std::vector<acd::Vec2> V2;
+			acd::TriMesh           t;
+			acd::triangulate(piece, V2, t.F);
+			for (const acd::Vec2& q : V2) t.V.push_back(pl.lift(q));
+			// The outline: the loops' edges, in the order triangulate() numbered their points.
+			std::vector<std::array<int, 2>> outline;
+			int                             base = 0;
+			for (int l = 0; l <= (int) piece.holes.size(); ++l) {
+				const int n = (int) (l == 0 ? piece.outer.size() : piece.holes[l - 1].size());
+				for (int i = 0; i < n; ++i) outline.push_back({base + i, base + (i + 1) % n});
+				base += n;
+			}
+			const QString name = polys.size() > 1 ? QString("acd_p%1_%2").arg(k).arg(QString::fromStdString(d.nodes[li].path))
+			                                       : QString("acd_%1").arg(QString::fromStdString(d.nodes[li].path));
+			MeshModel* layer = md.addNewMesh("", name, false);
+			acdml::from_trimesh(t, layer->cm, outline);
+			layer->cm.Tr = input.cm.Tr;
+			layer->updateDataMask(MeshModel::MM_VERTCOLOR);
+			vcg::tri::UpdateColor<CMeshO>::PerVertexConstant(layer->cm, part_color(pieces));
+			layer->updateBoxAndNormals();
+			++pieces;
+		}
+	}
+	json += "]";
+	const QString tree_file = par.getString("tree_file");
+	if (!tree_file.isEmpty()) {
+		QFile f(tree_file);
+		if (!f.open(QIODevice::WriteOnly | QIODevice::Truncate)) throw MLException("Cannot write the tree file " + tree_file);
+		f.write(QByteArray::fromStdString("{\"polygons\":" + json + "}"));
+	}
+	const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+	log("Polygon convex decomposition: %d polygons, %d holes, %d notches; %d pieces, tau %g (model units), max "
+	    "piece concavity %g, %.3f s%s",
+	    (int) polys.size(), holes, notches, pieces, o.tau, max_conc, secs,
+	    max_reached ? " (max_parts reached: some pieces exceed tau)" : "");
+	if (kept > 0) log("Warning: %d holes were kept inside pieces (keep_cavities); those pieces are not tau-convex.", kept);
+	return {
+		{"parts", pieces},
+		{"polygons", (int) polys.size()},
+		{"holes", holes},
+		{"notches", notches},
+		{"tau", o.tau},
+		{"tau_model_units", o.tau},
+		{"size", size},
+		{"max_concavity", max_conc},
+		{"root_concavity", root_conc},
+		{"time", secs},
+		{"max_parts_reached", max_reached},
+		{"hole_cuts", hole_cuts},
+		{"kept_holes", kept},
+		{"tau_convex", kept == 0 && max_conc <= o.tau},
+		{"plane_normal_x", pl.n.x()},
+		{"plane_normal_y", pl.n.y()},
+		{"plane_normal_z", pl.n.z()},
 	};
 }
 

@@ -14,7 +14,7 @@ class FilterACD : public QObject, public FilterPlugin
 	Q_INTERFACES(FilterPlugin)
 
 public:
-	enum FilterIds { NOTCH_CONCAVITY, CONVEX_DECOMPOSITION };
+	enum FilterIds { NOTCH_CONCAVITY, CONVEX_DECOMPOSITION, POLYGON_DECOMPOSITION };
 
 	FilterACD();
 
@@ -39,6 +39,8 @@ private:
 	std::map<std::string, QVariant> notchConcavity(MeshModel& m, vcg::CallBackPos* cb);
 	std::map<std::string, QVariant>
 	decompose(const RichParameterList& par, MeshDocument& md, vcg::CallBackPos* cb);
+	std::map<std::string, QVariant>
+	decomposePolygon(const RichParameterList& par, MeshDocument& md, vcg::CallBackPos* cb);
 };
 
 #endif

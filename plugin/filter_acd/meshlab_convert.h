@@ -6,8 +6,11 @@
 
 namespace acdml {
 
-// Live vertices and faces of `m`; `vertex_index` maps TriMesh vertex -> CMeshO vertex index.
-acd::TriMesh to_trimesh(const CMeshO& m, std::vector<int>* vertex_index = nullptr);
-void         from_trimesh(const acd::TriMesh& t, CMeshO& m);
+// Live vertices and faces of `m`; `vertex_index` maps TriMesh vertex -> CMeshO vertex index;
+// `edges` receives the live edges (TriMesh vertex indices).
+acd::TriMesh to_trimesh(const CMeshO& m, std::vector<int>* vertex_index = nullptr,
+                        std::vector<std::array<int, 2>>* edges = nullptr);
+// Replaces `m` with `t`'s vertices and faces, and `edges` between them.
+void from_trimesh(const acd::TriMesh& t, CMeshO& m, const std::vector<std::array<int, 2>>& edges = {});
 
 } // namespace acdml

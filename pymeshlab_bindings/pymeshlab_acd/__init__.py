@@ -8,6 +8,7 @@ filters as ``pymeshlab.MeshSet`` methods::
     ms.load_new_mesh("bunny.obj")
     ms.compute_scalar_by_notch_concavity()
     ms.generate_approximate_convex_decomposition(tau=2.0)
+    ms.generate_polygon_approximate_convex_decomposition(tau=1.0)   # on a planar polygon layer
 """
 import functools
 import json
@@ -16,12 +17,13 @@ import pathlib
 
 import pymeshlab
 
-__all__ = ["FILTERS", "plugin_path", "load", "decompose", "mesh_ids"]
+__all__ = ["FILTERS", "plugin_path", "load", "decompose", "decompose_polygon", "mesh_ids"]
 
 # Python names of the plugin's filters (keep in sync with FilterACD::pythonFilterName).
 FILTERS = (
     "compute_scalar_by_notch_concavity",
     "generate_approximate_convex_decomposition",
+    "generate_polygon_approximate_convex_decomposition",
 )
 
 _PLUGIN = "libfilter_acd.so"
@@ -104,6 +106,22 @@ def decompose(ms, **params):
     with tempfile.TemporaryDirectory() as tmp:
         tree_file = os.path.join(tmp, "tree.json")
         res = ms.generate_approximate_convex_decomposition(tree_file=tree_file, **params)
+        with open(tree_file) as f:
+            res["tree"] = json.load(f)
+    new = [i for i in mesh_ids(ms) if i not in before]
+    return res, new
+
+
+
+def decompose_polygon(ms, **params):
+    """Decompose the current layer as a planar polygon with holes. Returns (result dict with the trees
+    under "tree", piece layer ids). Parameters are the filter's (tau, tau_unit, cut_line_selection,
+    hole_handling, hole_order, max_parts)."""
+    import tempfile
+    before = set(mesh_ids(ms))
+    with tempfile.TemporaryDirectory() as tmp:
+        tree_file = os.path.join(tmp, "tree.json")
+        res = ms.generate_polygon_approximate_convex_decomposition(tree_file=tree_file, **params)
         with open(tree_file) as f:
             res["tree"] = json.load(f)
     new = [i for i in mesh_ids(ms) if i not in before]

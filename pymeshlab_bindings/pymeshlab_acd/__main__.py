@@ -1,6 +1,8 @@
 """Command line: python -m pymeshlab_acd {concavity,decompose} [MESH] [options]
+              python -m pymeshlab_acd polygon POLYGON [options]
 
-MESH defaults to pymeshlab's bundled bunny. Progress is printed while the filter runs.
+MESH defaults to pymeshlab's bundled bunny. POLYGON is a .poly, .svg or plain list-of-loops file (see
+pymeshlab_acd.polygon_io). Progress is printed while the filter runs.
 """
 import argparse
 import json
@@ -9,9 +11,11 @@ import pathlib
 import sys
 import time
 
+import numpy as np
 import pymeshlab
 
-from . import decompose, load, mesh_ids
+from . import decompose, decompose_polygon, load, mesh_ids
+from . import polygon_io
 
 BUNNY = os.path.join(os.path.dirname(pymeshlab.__file__), "tests", "sample_meshes", "bunny.obj")
 
@@ -81,12 +85,69 @@ def cmd_decompose(a):
     return 0
 
 
+def cmd_polygon(a):
+    load()
+    loops = polygon_io.read_loops(a.polygon)
+    V, E = polygon_io.loops_to_mesh(loops)
+    ms = pymeshlab.MeshSet()
+    ms.add_mesh(pymeshlab.Mesh(vertex_matrix=V, edge_matrix=E), pathlib.Path(a.polygon).stem)
+    ms.set_verbosity(a.progress)
+    params = dict(tau=a.tau, tau_unit=a.tau_unit, cut_line_selection=a.cut_line_selection,
+                  hole_handling=a.hole_handling, hole_order=a.hole_order, max_parts=a.max_parts)
+    res, ids = decompose_polygon(ms, **params)
+    ms.set_verbosity(False)
+    print(f"polygon          {a.polygon}  ({len(V)} vertices in {len(loops)} loops)")
+    print(f"polygons         {res['polygons']}, holes {res['holes']}, notches {res['notches']}")
+    print(f"tau              {a.tau} {a.tau_unit} = {res['tau_model_units']:.6g} units")
+    print(f"pieces           {res['parts']}")
+    print(f"max concavity    {res['max_concavity']:.6g} (root {res['root_concavity']:.6g})")
+    print(f"time             {res['time']:.3f} s")
+    if res["kept_holes"]:
+        print(f"note             {res['kept_holes']} holes kept inside pieces (not tau-convex)")
+    if a.out:
+        out = pathlib.Path(a.out)
+        out.mkdir(parents=True, exist_ok=True)
+        pieces = []
+        for i in ids:
+            m = ms.mesh(i)
+            Vp, Fp = m.vertex_matrix(), m.face_matrix()
+            pieces.append((Vp[:, :2] if np.allclose(Vp[:, 2], 0) else _in_plane(Vp), Fp))
+            ms.set_current_mesh(i)
+            ms.save_current_mesh(str(out / f"{m.label()}.ply"))
+        polygon_io.write_svg(str(out / "pieces.svg"), loops, pieces)
+        (out / "tree.json").write_text(json.dumps(res["tree"], indent=1))
+        summary = {k: v for k, v in res.items() if k != "tree"}
+        (out / "summary.json").write_text(json.dumps(summary, indent=1, default=float))
+        print(f"wrote            {len(ids)} pieces as PLY (faces + outline edges), pieces.svg, tree.json, "
+              f"summary.json to {out}")
+    return 0
+
+
+def _in_plane(V):
+    """2D coordinates of planar points in their own principal frame (for the picture)."""
+    c = V - V.mean(0)
+    _, _, vt = np.linalg.svd(c, full_matrices=False)
+    return c @ vt[:2].T
+
+
 def main(argv=None):
     p = argparse.ArgumentParser(prog="python -m pymeshlab_acd",
                                 description="Approximate convex decomposition (Lien & Amato) through pymeshlab.")
     sub = p.add_subparsers(dest="cmd", required=True)
     c = sub.add_parser("concavity", help="measure notch concavity (compute_scalar_by_notch_concavity)")
     d = sub.add_parser("decompose", help="decompose (generate_approximate_convex_decomposition)")
+    g = sub.add_parser("polygon", help="decompose a 2D polygon with holes "
+                                       "(generate_polygon_approximate_convex_decomposition)")
+    g.add_argument("polygon", help=".poly, .svg or plain text file of loops")
+    g.add_argument("--out", help="folder for the pieces (PLY), pieces.svg, tree.json, summary.json")
+    g.add_argument("--no-progress", dest="progress", action="store_false", help="do not print progress")
+    g.add_argument("--tau", type=float, default=1.0, help="concavity tolerance (default 1 = 1%% of size)")
+    g.add_argument("--tau-unit", default="percent_of_size", choices=["percent_of_size", "model_units"])
+    g.add_argument("--cut-line-selection", default="best", choices=["best", "bisector"])
+    g.add_argument("--hole-handling", default="best_plane", choices=["best_plane", "principal_plane", "keep_cavities"],
+                   help="holes: the best of several lines, the principal axis (the paper), or kept")
+    g.add_argument("--hole-order", default="first", choices=["first", "by_concavity"])
+    g.add_argument("--max-parts", type=int, default=0)
     for s in (c, d):
         s.add_argument("mesh", nargs="?", default=BUNNY, help="closed mesh file (default: pymeshlab's bunny)")
         s.add_argument("--out", help="folder for output files")
@@ -109,8 +170,8 @@ def main(argv=None):
     d.add_argument("--on-self-intersection", default="warn", choices=["warn", "refuse"])
     a = p.parse_args(argv)
     try:
-        return {"concavity": cmd_concavity, "decompose": cmd_decompose}[a.cmd](a)
-    except pymeshlab.PyMeshLabException as e:
+        return {"concavity": cmd_concavity, "decompose": cmd_decompose, "polygon": cmd_polygon}[a.cmd](a)
+    except (pymeshlab.PyMeshLabException, ValueError, OSError) as e:
         print(f"error: {e}", file=sys.stderr)
         return 1
 
