@@ -1,12 +1,18 @@
 #!/usr/bin/env bash
 # Benchmark against CoACD, V-HACD 4 and CGAL's ACD (see scripts/bench.py --help); with --rotation,
-# the pose-dependence table instead (scripts/bench_rotation.py). Installs what it needs on top of
+# the pose-dependence table instead (scripts/bench_rotation.py); with --polygons, the 2D table against
+# CGAL's Partition_2 (scripts/bench_polygons.py). Installs what it needs on top of
 # scripts/setup.sh: the peers from PyPI and the C++ metric/peer tools.
 set -euo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
 bash "$here/setup.sh"
 source "$here/env.sh"
 python3 -m pip install -q "coacd==1.0.14" "vhacdx==0.1.1" "matplotlib>=3.7" 2>&1 | grep -v "running pip as the 'root'" || true
+if [ "${1:-}" = "--polygons" ]; then   # 2D: ours vs CGAL Partition_2 (no Python peers needed)
+	shift
+	cmake --build "$ACD_BUILD_DIR" --target polygon_peer -- -j"$(nproc)" >/dev/null
+	exec python3 "$here/bench_polygons.py" "$@"
+fi
 cmake --build "$ACD_BUILD_DIR" --target acd_metrics cgal_acd_peer -- -j"$(nproc)" >/dev/null
 if [ "${1:-}" = "--rotation" ]; then
 	shift

@@ -6,6 +6,7 @@
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Partition_traits_2.h>
 #include <CGAL/partition_2.h>
+#include <CGAL/partition_is_valid_2.h>
 
 #include <chrono>
 #include <cstdio>
@@ -86,7 +87,11 @@ int main(int argc, char** argv)
 			std::list<Traits::Polygon_2> out;
 			const auto t0 = std::chrono::steady_clock::now();
 			fn(pts.begin(), pts.end(), std::back_inserter(out));
-			std::printf("{\"method\":\"%s\",\"parts\":%zu,\"seconds\":%.6f}\n", name, out.size(), seconds_since(t0));
+			const double secs = seconds_since(t0);
+			// CGAL's own check: the pieces are convex and tile the polygon.
+			const bool valid = CGAL::convex_partition_is_valid_2(pts.begin(), pts.end(), out.begin(), out.end());
+			std::printf("{\"method\":\"%s\",\"parts\":%zu,\"seconds\":%.6f,\"valid\":%s}\n", name, out.size(), secs,
+			            valid ? "true" : "false");
 		};
 		run("cgal_approx", [](auto a, auto b, auto o) { CGAL::approx_convex_partition_2(a, b, o); });
 		run("cgal_greene", [](auto a, auto b, auto o) { CGAL::greene_approx_convex_partition_2(a, b, o); });
