@@ -238,14 +238,17 @@ struct Crossing
 	int    loop, edge;   // loop 0 = outer, 1 + i = hole i; edge from vertex `edge` to the next
 	double t;            // along the line from the anchor
 	Vec2   x;
+	int    vertex = -1;  // the cut ends exactly at this outer vertex (a notch-to-vertex cut)
 };
 
 const Loop2& loop_of(const Polygon2& p, int l) { return l == 0 ? p.outer : p.holes[l - 1]; }
 
 // The cut: segments (pairs of crossings, or the notch vertex and a crossing) splitting `p`; then
 // the boundaries are walked into loops, turning onto the cut at each of its ends.
+// `on` > 0 lets the cut from a notch end exactly at an outer vertex lying on the line (within
+// `on`): a cut from notch to notch; any other vertex on the line makes it fail (the caller nudges).
 bool separate_at(const Polygon2& p, const Vec2& from, int vertex, const Vec2& dir, std::array<Polygon2, 2>& out,
-                 Vec2* cut_from, Vec2* cut_to)
+                 Vec2* cut_from, Vec2* cut_to, double on = 0)
 {
 	const int nl = 1 + (int) p.holes.size();
 	std::vector<Crossing> xs;
@@ -253,9 +256,17 @@ bool separate_at(const Polygon2& p, const Vec2& from, int vertex, const Vec2& di
 		const Loop2& L = loop_of(p, l);
 		const int    n = (int) L.size();
 		for (int i = 0; i < n; ++i) {
+			if (on > 0 && !(l == 0 && i == vertex) && std::abs(cross(dir, L[i] - from)) <= on) {
+				const double t = dir.dot(L[i] - from);
+				if (l != 0 && t > 0) return false;
+				if (l == 0 && t > 0) xs.push_back({0, i, t, L[i], i});
+			}
+		}
+		for (int i = 0; i < n; ++i) {
 			const int j = (i + 1) % n;
 			if (l == 0 && (i == vertex || j == vertex)) continue;   // the notch's own edges
 			const double si = cross(dir, L[i] - from), sj = cross(dir, L[j] - from);
+			if (on > 0 && (std::abs(si) <= on || std::abs(sj) <= on)) continue;   // met at a vertex
 			if ((si > 0) == (sj > 0)) continue;
 			const Vec2 x = L[i] + si / (si - sj) * (L[j] - L[i]);
 			xs.push_back({l, i, dir.dot(x - from), x});
@@ -325,6 +336,11 @@ bool separate_at(const Polygon2& p, const Vec2& from, int vertex, const Vec2& di
 			node[i] = base[0] + vertex;
 			continue;
 		}
+		if (cut[i].vertex >= 0) {
+			if (i + 1 != cut.size()) return false;   // only the cut's end may be a vertex
+			node[i] = base[0] + cut[i].vertex;
+			continue;
+		}
 		const int a = base[cut[i].loop] + cut[i].edge;
 		node[i]     = (int) pos.size();
 		pos.push_back(cut[i].x);
@@ -383,6 +399,8 @@ bool separate(const Polygon2& p, const Vec2& from, int vertex, const Vec2& dir_i
 	// hole's line) by tiny amounts until none is within `gap` (the paper's perturbation).
 	const double size = extent2(p.outer);
 	const double gap  = 1e-9 * size;
+	// First the exact line from a notch, allowed to end at a vertex on it (notch to notch).
+	if (vertex >= 0 && separate_at(p, from, vertex, dir_in.normalized(), out, cut_from, cut_to, gap)) return true;
 	for (double off : {0.0, 1e-7, -1e-7, 3.1e-7, -3.1e-7, 1.3e-6, -1.3e-6}) {
 		Vec2 dir = dir_in.normalized(), at = from;
 		if (vertex >= 0) dir = Eigen::Rotation2Dd(off) * dir;
@@ -711,7 +729,8 @@ Decomposition2 decompose_unit(const Polygon2& poly, const DecomposeOptions& opt)
 			if (opt.cut_plane_selection == CutPlaneSelection::Best) {
 				const double span = std::atan2(cross(u1, u2), u1.dot(u2));   // from u1 to u2
 				const int    m    = std::max(2, opt.candidate_planes);
-				for (int k = 1; k <= m; ++k) cands.push_back({cur, Eigen::Rotation2Dd(span * k / (m + 1)) * u1, r});
+				// the cone's own edges too: a cut continuing an edge can reach the next notch in line
+				for (int k = 0; k <= m + 1; ++k) cands.push_back({cur, Eigen::Rotation2Dd(span * k / (m + 1)) * u1, r});
 				// towards the nearest other notches within that cone (cutting two at once)
 				std::vector<std::pair<double, int>> near;
 				for (int v = 0; v < n; ++v)
@@ -720,7 +739,9 @@ Decomposition2 decompose_unit(const Polygon2& poly, const DecomposeOptions& opt)
 				for (size_t i = 0; i < near.size() && i < 6; ++i) {
 					const Vec2 d = (P.outer[near[i].second] - cur).normalized();
 					const double a = std::atan2(cross(u1, d), u1.dot(d));
-					if ((span > 0 && a > 0 && a < span) || (span < 0 && a < 0 && a > span)) cands.push_back({cur, d, r});
+					const double tol = 1e-9;
+					if ((span > 0 && a > -tol && a < span + tol) || (span < 0 && a < tol && a > span - tol))
+						cands.push_back({cur, d, r});
 				}
 			}
 			first_fit = opt.cut_plane_selection == CutPlaneSelection::Bisector;
@@ -767,9 +788,14 @@ Decomposition2 decompose_unit(const Polygon2& poly, const DecomposeOptions& opt)
 			}
 			if (pick >= 0) break;
 		}
-		// As in 3D: the paper's bisector stands unless another direction is clearly (10%) better.
-		if (hole < 0 && pick > 0 && trials[0].ok && !trials[0].crosses && !(trials[pick].score < 0.9 * trials[0].score))
-			pick = 0;
+		// As in 3D, the paper's bisector stands unless another direction is clearly (10%) better; here
+		// also when it leaves the same worst concavity but clearly less in total (a cut resolving two
+		// notches at once, as across a comb's tooth).
+		if (hole < 0 && pick > 0 && trials[0].ok && !trials[0].crosses) {
+			const Trial &b = trials[0], &t = trials[pick];
+			const bool better = t.score < 0.9 * b.score || (t.score <= b.score + hair && t.sum < 0.9 * b.sum);
+			if (!better) pick = 0;
+		}
 		if (pick < 0) {
 			D.nodes[id].uncut = true;
 			continue;
