@@ -357,3 +357,24 @@ def test_open_or_non_planar_outlines_get_a_clear_error(ms):
     ms.add_mesh(pymeshlab.Mesh(vertex_matrix=V), "points")
     with pytest.raises(pymeshlab.PyMeshLabException, match="neither faces nor edges"):
         run(ms, tau=1.0)
+
+
+@pytest.mark.parametrize("seed", range(6))
+def test_random_star_shaped_polygons_partition(ms, seed):
+    # random star-shaped outlines (3-200 vertices), some with a hole near the centre, every option
+    rng = np.random.default_rng(seed)
+    for case in range(6):
+        n = int(rng.integers(3, 200))
+        t = np.sort(rng.uniform(0, 2 * np.pi, n))
+        r = rng.uniform(3.0, 10.0, n)
+        loops = [np.column_stack([r * np.cos(t), r * np.sin(t)])]
+        if case % 2:
+            loops.append(regular(int(rng.integers(3, 20)), 1.0, rng.uniform(-0.5, 0.5, 2)))
+        m = pymeshlab.MeshSet()
+        add_loops(m, loops)
+        tau = float(rng.choice([0.05, 0.3, 1.0]))
+        handling = str(rng.choice(["best_plane", "principal_plane", "keep_cavities"]))
+        res, ids = run(m, tau=tau, tau_unit="model_units", cut_line_selection=str(rng.choice(["best", "bisector"])),
+                       hole_handling=handling, hole_order=str(rng.choice(["first", "by_concavity"])))
+        keep = handling == "keep_cavities" and len(loops) > 1
+        check_pieces(m, ids, polygon_area(loops), tau=None if keep else tau, overlap=3, seed=case)
