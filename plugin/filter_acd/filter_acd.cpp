@@ -15,6 +15,9 @@
 #include <vcg/complex/algorithms/update/color.h>
 
 #include <QFile>
+#include <QJsonArray>
+#include <QJsonDocument>
+#include <QJsonObject>
 
 #include <algorithm>
 #include <array>
@@ -95,7 +98,7 @@ vcg::Color4b part_color(int i)
 
 FilterACD::FilterACD()
 {
-	typeList = {NOTCH_CONCAVITY, CONVEX_DECOMPOSITION, POLYGON_DECOMPOSITION};
+	typeList = {NOTCH_CONCAVITY, CONVEX_DECOMPOSITION, POLYGON_DECOMPOSITION, LEVEL_OF_DETAIL};
 	for (ActionIDType tt : types()) actionList.push_back(new QAction(filterName(tt), this));
 }
 
@@ -107,6 +110,7 @@ QString FilterACD::filterName(ActionIDType f) const
 	case NOTCH_CONCAVITY: return "Convex Decomposition: Notch Concavity";
 	case CONVEX_DECOMPOSITION: return "Convex Decomposition: Approximate Convex Decomposition";
 	case POLYGON_DECOMPOSITION: return "Convex Decomposition: Approximate Convex Decomposition of a Polygon";
+	case LEVEL_OF_DETAIL: return "Convex Decomposition: Level of Detail from a Saved Tree";
 	default: assert(0); return QString();
 	}
 }
@@ -117,6 +121,7 @@ QString FilterACD::pythonFilterName(ActionIDType f) const
 	case NOTCH_CONCAVITY: return "compute_scalar_by_notch_concavity";
 	case CONVEX_DECOMPOSITION: return "generate_approximate_convex_decomposition";
 	case POLYGON_DECOMPOSITION: return "generate_polygon_approximate_convex_decomposition";
+	case LEVEL_OF_DETAIL: return "generate_convex_decomposition_level_of_detail";
 	default: assert(0); return QString();
 	}
 }
@@ -145,6 +150,12 @@ QString FilterACD::filterInfo(ActionIDType f) const
 		               "or a layer of edges forming closed loops, in any plane. Each piece becomes a layer "
 		               "(a triangulated planar face mesh with its outline as edges) named by its tree path.") +
 		       kCitation;
+	case LEVEL_OF_DETAIL:
+		return QString("Reads the cut tree saved by the 3D decomposition (its <i>tree_file</i>) and adds the parts "
+		               "of a coarser level without recomputing anything: the tree is cut where every part's "
+		               "concavity is at most the given tau (at least the tau it was computed with), or at a "
+		               "given depth. Each part is rebuilt from the saved leaves below it; its saved convex hull "
+		               "can be added too.") + kCitation;
 	default: assert(0); return QString();
 	}
 }
@@ -154,7 +165,8 @@ FilterPlugin::FilterClass FilterACD::getClass(const QAction* a) const
 	switch (ID(a)) {
 	case NOTCH_CONCAVITY: return FilterClass(Quality + Measure);
 	case CONVEX_DECOMPOSITION:
-	case POLYGON_DECOMPOSITION: return FilterClass(Remeshing + Layer);
+	case POLYGON_DECOMPOSITION:
+	case LEVEL_OF_DETAIL: return FilterClass(Remeshing + Layer);
 	default: assert(0); return Generic;
 	}
 }
@@ -206,6 +218,20 @@ RichParameterList FilterACD::initParameterList(const QAction* a, const MeshModel
 		p.addParam(RichString("tree_file", "", "Save tree as (JSON)",
 		                      "If set, the cut tree of each polygon (nodes, paths, cuts, concavity, area) is "
 		                      "written to this JSON file. Empty: not written.", true));
+		return p;
+	}
+	if (ID(a) == LEVEL_OF_DETAIL) {
+		p.addParam(RichString("tree_file", "", "Saved tree (JSON)",
+		                      "The tree_file written by 'Approximate Convex Decomposition' (with part geometry)."));
+		p.addParam(RichEnum("level_by", 0, QStringList{"tau", "depth"}, "Level by",
+		                    "tau: cut the tree where parts are within this tau; depth: at this tree depth."));
+		p.addParam(RichFloat("tau", 5.0, "Coarser tau",
+		                     "With level_by = tau: the concavity a part may keep (at least the tree's own tau)."));
+		p.addParam(RichEnum("tau_unit", 0, kTauUnitLabels, "Unit of tau",
+		                    "percent_of_size: a percentage of the mesh's enclosing-sphere diameter; model_units."));
+		p.addParam(RichInt("depth", 1, "Depth", "With level_by = depth: the root is depth 0."));
+		p.addParam(RichBool("output_hulls", false, "Also add part hulls",
+		                    "Add each part's saved convex hull as a layer (acd_hull_<path>)."));
 		return p;
 	}
 	if (ID(a) != CONVEX_DECOMPOSITION) return p;
@@ -287,6 +313,7 @@ std::map<std::string, QVariant> FilterACD::applyFilter(
 	case NOTCH_CONCAVITY: return guarded([&] { return notchConcavity(*md.mm(), cb); });
 	case CONVEX_DECOMPOSITION: return guarded([&] { return decompose(par, md, cb); });
 	case POLYGON_DECOMPOSITION: return guarded([&] { return decomposePolygon(par, md, cb); });
+	case LEVEL_OF_DETAIL: return guarded([&] { return levelOfDetail(par, md, cb); });
 	default: wrongActionCalled(action);
 	}
 	return {};
@@ -420,7 +447,7 @@ FilterACD::decompose(const RichParameterList& par, MeshDocument& md, vcg::CallBa
 		QFile f(tree_file);
 		if (!f.open(QIODevice::WriteOnly | QIODevice::Truncate))
 			throw MLException("Cannot write the tree file " + tree_file);
-		f.write(QByteArray::fromStdString(d.to_json()));
+		f.write(QByteArray::fromStdString(d.to_json(true)));
 	}
 	const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 	const int    uncut = (int) std::count_if(d.nodes.begin(), d.nodes.end(), [](const acd::Node& n) { return n.uncut; });
@@ -449,6 +476,130 @@ FilterACD::decompose(const RichParameterList& par, MeshDocument& md, vcg::CallBa
 		{"hole_cuts", d.hole_cuts},
 		{"kept_cavities", d.kept_cavities},
 		{"tau_convex", d.kept_cavities == 0 && d.max_leaf_concavity() <= o.tau},
+	};
+}
+
+namespace {
+
+acd::TriMesh mesh_from_json(const QJsonObject& o)
+{
+	acd::TriMesh     m;
+	const QJsonArray v = o["v"].toArray(), f = o["f"].toArray();
+	for (int i = 0; i + 2 < v.size(); i += 3) m.V.emplace_back(v[i].toDouble(), v[i + 1].toDouble(), v[i + 2].toDouble());
+	for (int i = 0; i + 2 < f.size(); i += 3) {
+		acd::Tri t{f[i].toInt(-1), f[i + 1].toInt(-1), f[i + 2].toInt(-1)};
+		for (int k : t)
+			if (k < 0 || k >= (int) m.V.size()) throw MLException("The tree file has a face with a bad vertex index.");
+		m.F.push_back(t);
+	}
+	return m;
+}
+
+// The tree written by Decomposition::to_json(true), back into the core's structure (leaf meshes,
+// hulls kept aside by node id).
+acd::Decomposition read_tree(const QString& path, std::vector<acd::TriMesh>& hulls)
+{
+	QFile f(path);
+	if (path.isEmpty() || !f.open(QIODevice::ReadOnly)) throw MLException("Cannot read the tree file '" + path + "'.");
+	QJsonParseError    err;
+	const QJsonDocument doc = QJsonDocument::fromJson(f.readAll(), &err);
+	if (doc.isNull()) throw MLException("The tree file is not valid JSON: " + err.errorString());
+	const QJsonObject  root  = doc.object();
+	const QJsonArray   nodes = root["nodes"].toArray();
+	if (nodes.isEmpty()) throw MLException("The tree file has no nodes (was it written by the 3D decomposition?).");
+	acd::Decomposition D;
+	D.tau           = root["tau"].toDouble();
+	D.kept_cavities = root["kept_cavities"].toInt();
+	hulls.resize(nodes.size());
+	for (int i = 0; i < nodes.size(); ++i) {
+		const QJsonObject o = nodes[i].toObject();
+		acd::Node         n;
+		n.parent    = o["parent"].toInt(-1);
+		n.child[0]  = o["children"].toArray()[0].toInt(-1);
+		n.child[1]  = o["children"].toArray()[1].toInt(-1);
+		n.path      = o["path"].toString().toStdString();
+		n.concavity = o["concavity"].toDouble();
+		n.volume    = o["volume"].toDouble();
+		n.solids    = o["solids"].toBool();
+		n.cavities  = o["cavities"].toInt();
+		for (int c : n.child)
+			if (c >= nodes.size() || (c < 0 && n.child[0] != n.child[1])) throw MLException("The tree file's links are broken.");
+		if (o.contains("plane")) {
+			const QJsonObject pl = o["plane"].toObject();
+			const QJsonArray  nn = pl["normal"].toArray();
+			n.has_plane = true;
+			n.plane.n   = acd::Vec3(nn[0].toDouble(), nn[1].toDouble(), nn[2].toDouble());
+			n.plane.d   = pl["offset"].toDouble();
+		}
+		if (n.leaf()) {
+			if (!o.contains("mesh")) throw MLException("The tree file has no part geometry (write it with tree_file).");
+			n.mesh = mesh_from_json(o["mesh"].toObject());
+		}
+		if (o.contains("hull")) hulls[i] = mesh_from_json(o["hull"].toObject());
+		D.nodes.push_back(std::move(n));
+	}
+	return D;
+}
+
+} // namespace
+
+std::map<std::string, QVariant> FilterACD::levelOfDetail(const RichParameterList& par, MeshDocument& md,
+                                                         vcg::CallBackPos* cb)
+{
+	const auto                t0 = std::chrono::steady_clock::now();
+	std::vector<acd::TriMesh> hulls;
+	if (cb) cb(0, "Reading the tree...");
+	const acd::Decomposition D = read_tree(par.getString("tree_file"), hulls);
+	const bool               by_depth = par.getEnum("level_by") == 1;
+	double                   tau      = par.getFloat("tau");
+	if (!by_depth) {
+		if (!(tau > 0) || !std::isfinite(tau)) throw MLException(QString("tau must be positive (got %1).").arg(tau));
+		if (hulls[0].V.empty()) throw MLException("The tree file has no root hull (write it with tree_file).");
+		if (par.getEnum("tau_unit") == 0) tau = tau / 100.0 * acd::enclosing_diameter(hulls[0].V);
+	}
+	const int depth = par.getInt("depth");
+	if (by_depth && depth < 0) throw MLException("depth must be 0 (the root) or more.");
+	const std::vector<int> level = acd::level_of_detail(D, tau, by_depth ? depth : -1);
+	double                 worst = 0;
+	int                    idx = 0, open_parts = 0;
+	for (int id : level) {
+		if (cb) cb(5 + 90 * idx / (int) level.size(), "Rebuilding parts...");
+		const acd::Node&   n = D.nodes[id];
+		const acd::TriMesh m = acd::rebuild_solid(D, id);
+		worst                = std::max(worst, n.concavity);
+		try {
+			acd::make_solid(m);
+		}
+		catch (const acd::Error&) {
+			++open_parts;
+		}
+		MeshModel* part = md.addNewMesh("", QString("acd_%1").arg(QString::fromStdString(n.path)), false);
+		acdml::from_trimesh(m, part->cm);
+		part->updateDataMask(MeshModel::MM_VERTCOLOR);
+		vcg::tri::UpdateColor<CMeshO>::PerVertexConstant(part->cm, part_color(idx));
+		part->updateBoxAndNormals();
+		if (par.getBool("output_hulls") && !hulls[id].F.empty()) {
+			MeshModel* h = md.addNewMesh("", QString("acd_hull_%1").arg(QString::fromStdString(n.path)), false);
+			acdml::from_trimesh(hulls[id], h->cm);
+			h->updateDataMask(MeshModel::MM_VERTCOLOR);
+			vcg::tri::UpdateColor<CMeshO>::PerVertexConstant(h->cm, part_color(idx));
+			h->updateBoxAndNormals();
+		}
+		++idx;
+	}
+	const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+	log("Level of detail: %d parts of the saved %d (%s), max part concavity %g, %.2f s, nothing recomputed",
+	    idx, (int) D.leaves().size(), by_depth ? qUtf8Printable(QString("depth %1").arg(depth))
+	                                           : qUtf8Printable(QString("tau %1").arg(tau)),
+	    worst, secs);
+	if (open_parts > 0) log("Warning: %d rebuilt parts are not closed.", open_parts);
+	return {
+		{"parts", idx},
+		{"tree_parts", (int) D.leaves().size()},
+		{"tau_model_units", by_depth ? D.tau : tau},
+		{"max_concavity", worst},
+		{"open_parts", open_parts},
+		{"time", secs},
 	};
 }
 

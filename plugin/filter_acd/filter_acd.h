@@ -14,7 +14,7 @@ class FilterACD : public QObject, public FilterPlugin
 	Q_INTERFACES(FilterPlugin)
 
 public:
-	enum FilterIds { NOTCH_CONCAVITY, CONVEX_DECOMPOSITION, POLYGON_DECOMPOSITION };
+	enum FilterIds { NOTCH_CONCAVITY, CONVEX_DECOMPOSITION, POLYGON_DECOMPOSITION, LEVEL_OF_DETAIL };
 
 	FilterACD();
 
@@ -23,7 +23,8 @@ public:
 	QString      pythonFilterName(ActionIDType f) const;
 	QString      filterInfo(ActionIDType filter) const;
 	FilterClass  getClass(const QAction* a) const;
-	FilterArity  filterArity(const QAction*) const { return SINGLE_MESH; }
+	// The level of detail reads a saved tree: it needs no layer.
+	FilterArity  filterArity(const QAction* a) const { return ID(a) == LEVEL_OF_DETAIL ? NONE : SINGLE_MESH; }
 	int          getPreConditions(const QAction*) const;
 	int          getRequirements(const QAction* a);
 	int          postCondition(const QAction* a) const;
@@ -39,6 +40,8 @@ private:
 	std::map<std::string, QVariant> notchConcavity(MeshModel& m, vcg::CallBackPos* cb);
 	std::map<std::string, QVariant>
 	decompose(const RichParameterList& par, MeshDocument& md, vcg::CallBackPos* cb);
+	std::map<std::string, QVariant>
+	levelOfDetail(const RichParameterList& par, MeshDocument& md, vcg::CallBackPos* cb);
 	std::map<std::string, QVariant>
 	decomposePolygon(const RichParameterList& par, MeshDocument& md, vcg::CallBackPos* cb);
 };

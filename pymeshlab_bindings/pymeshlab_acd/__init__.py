@@ -17,13 +17,14 @@ import pathlib
 
 import pymeshlab
 
-__all__ = ["FILTERS", "plugin_path", "load", "decompose", "decompose_polygon", "mesh_ids"]
+__all__ = ["FILTERS", "plugin_path", "load", "decompose", "decompose_polygon", "level_of_detail", "mesh_ids"]
 
 # Python names of the plugin's filters (keep in sync with FilterACD::pythonFilterName).
 FILTERS = (
     "compute_scalar_by_notch_concavity",
     "generate_approximate_convex_decomposition",
     "generate_polygon_approximate_convex_decomposition",
+    "generate_convex_decomposition_level_of_detail",
 )
 
 _PLUGIN = "libfilter_acd.so"
@@ -104,8 +105,8 @@ def decompose(ms, **params):
     import tempfile
     before = set(mesh_ids(ms))
     with tempfile.TemporaryDirectory() as tmp:
-        tree_file = os.path.join(tmp, "tree.json")
-        res = ms.generate_approximate_convex_decomposition(tree_file=tree_file, **params)
+        tree_file = params.pop("tree_file", None) or os.path.join(tmp, "tree.json")
+        res = ms.generate_approximate_convex_decomposition(tree_file=str(tree_file), **params)
         with open(tree_file) as f:
             res["tree"] = json.load(f)
     new = [i for i in mesh_ids(ms) if i not in before]
@@ -126,6 +127,18 @@ def decompose_polygon(ms, **params):
             res["tree"] = json.load(f)
     new = [i for i in mesh_ids(ms) if i not in before]
     return res, new
+
+
+def level_of_detail(ms, tree_file, tau=None, depth=None, tau_unit="percent_of_size", output_hulls=False):
+    """Parts of a coarser level from a tree saved by decompose(..., tree_file=...), nothing recomputed:
+    where every part is within `tau` (>= the tree's own), or at tree `depth`. Returns (result, layer ids)."""
+    if (tau is None) == (depth is None):
+        raise ValueError("give exactly one of tau and depth")
+    before = set(mesh_ids(ms))
+    res = ms.generate_convex_decomposition_level_of_detail(
+        tree_file=str(tree_file), level_by="depth" if depth is not None else "tau",
+        tau=float(tau or 1.0), tau_unit=tau_unit, depth=int(depth or 0), output_hulls=output_hulls)
+    return res, [i for i in mesh_ids(ms) if i not in before]
 
 
 load()

@@ -13,7 +13,9 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <map>
 #include <queue>
+#include <set>
 #include <sstream>
 
 namespace acd {
@@ -229,7 +231,7 @@ double Decomposition::max_leaf_concavity() const
 	return c;
 }
 
-std::string Decomposition::to_json() const
+std::string Decomposition::to_json(bool geometry) const
 {
 	std::ostringstream o;
 	o.precision(17);
@@ -249,10 +251,142 @@ std::string Decomposition::to_json() const
 		if (n.has_plane)
 			o << ",\"plane\":{\"normal\":[" << n.plane.n.x() << "," << n.plane.n.y() << "," << n.plane.n.z()
 			  << "],\"offset\":" << n.plane.d << "}";
+		auto mesh = [&](const char* key, const TriMesh& m) {
+			o << ",\"" << key << "\":{\"v\":[";
+			for (size_t k = 0; k < m.V.size(); ++k)
+				o << (k ? "," : "") << m.V[k].x() << "," << m.V[k].y() << "," << m.V[k].z();
+			o << "],\"f\":[";
+			for (size_t k = 0; k < m.F.size(); ++k) o << (k ? "," : "") << m.F[k][0] << "," << m.F[k][1] << "," << m.F[k][2];
+			o << "]}";
+		};
+		if (geometry && !n.mesh.F.empty()) {
+			mesh("hull", ConvexHull(n.mesh.V).mesh());
+			if (n.leaf()) mesh("mesh", n.mesh);
+		}
 		o << "}";
 	}
 	o << "]}";
 	return o.str();
+}
+
+std::vector<int> level_of_detail(const Decomposition& D, double tau, int depth)
+{
+	std::vector<int> out, stack{0};
+	while (!stack.empty()) {
+		const int   id = stack.back();
+		const Node& n  = D.nodes[id];
+		stack.pop_back();
+		const bool whole = depth >= 0 ? (int) n.path.size() - 1 >= depth
+		                              : n.concavity <= tau && !n.solids && (n.cavities == 0 || D.kept_cavities > 0);
+		if (n.leaf() || whole) out.push_back(id);
+		else stack.insert(stack.end(), {n.child[1], n.child[0]});
+	}
+	std::sort(out.begin(), out.end(), [&](int a, int b) { return D.nodes[a].path < D.nodes[b].path; });
+	return out;
+}
+
+TriMesh rebuild_solid(const Decomposition& D, int id)
+{
+	// Leaves and cut planes of the subtree.
+	std::vector<int>   leaves, stack{id};
+	std::vector<Plane> cuts;
+	while (!stack.empty()) {
+		const Node& n = D.nodes[stack.back()];
+		const int   k = stack.back();
+		stack.pop_back();
+		if (n.leaf()) leaves.push_back(k);
+		else {
+			if (n.has_plane) cuts.push_back(n.plane);
+			stack.push_back(n.child[0]);
+			stack.push_back(n.child[1]);
+		}
+	}
+	if (leaves.size() == 1) return D.nodes[leaves[0]].mesh;
+
+	// Weld (cap vertices are bit-identical copies on both sides) and drop cap faces.
+	TriMesh                               all;
+	std::map<std::array<double, 3>, int>  at;
+	std::vector<Vec3>                     pts;
+	for (int l : leaves)
+		for (const Vec3& p : D.nodes[l].mesh.V) pts.push_back(p);
+	const double eps = 1e-9 * extent(pts);
+	for (int l : leaves) {
+		const TriMesh& m = D.nodes[l].mesh;
+		std::vector<int> id_of(m.V.size());
+		for (size_t v = 0; v < m.V.size(); ++v) {
+			auto [it, fresh] = at.emplace(std::array<double, 3>{m.V[v].x(), m.V[v].y(), m.V[v].z()}, (int) all.V.size());
+			if (fresh) all.V.push_back(m.V[v]);
+			id_of[v] = it->second;
+		}
+		for (const Tri& t : m.F) {
+			bool cap = false;
+			for (const Plane& pl : cuts) {
+				bool on = true;
+				for (int v : t) on = on && std::abs(pl.eval(m.V[v])) <= eps;
+				cap = cap || on;
+			}
+			if (!cap) all.F.push_back({id_of[t[0]], id_of[t[1]], id_of[t[2]]});
+		}
+	}
+
+	// Rims: a later cut on one side split a rim edge there; the other side's edge (b -> a, unmatched)
+	// gets the rim vertices lying on it, and its face is fanned out.
+	std::set<std::pair<int, int>> directed;
+	for (const Tri& t : all.F)
+		for (int k = 0; k < 3; ++k) directed.insert({t[k], t[(k + 1) % 3]});
+	std::set<int> rim;
+	for (const auto& [a, b] : directed)
+		if (!directed.count({b, a})) rim.insert(a), rim.insert(b);
+	std::vector<int> rim_v(rim.begin(), rim.end());
+	for (int pass = 0; pass < 8 && !rim_v.empty(); ++pass) {
+		bool             changed = false;
+		std::vector<Tri> faces;
+		for (const Tri& t : all.F) {
+			int k = 0, w = -1;
+			for (; k < 3 && w < 0; ++k) {
+				const int a = t[k], b = t[(k + 1) % 3];
+				if (directed.count({b, a})) continue;
+				const Vec3 ab = all.V[b] - all.V[a];
+				double     best = 2;
+				for (int v : rim_v) {
+					if (v == a || v == b) continue;
+					const double s = (all.V[v] - all.V[a]).dot(ab) / ab.squaredNorm();
+					if (s <= 0 || s >= 1 || (all.V[a] + s * ab - all.V[v]).norm() > eps) continue;
+					if (s < best) best = s, w = v;   // the nearest to a first; later passes do the rest
+				}
+			}
+			if (w < 0) {
+				faces.push_back(t);
+				continue;
+			}
+			--k;   // edge k (a -> b) gets w: (a, w, c) and (w, b, c)
+			const int a = t[k], b = t[(k + 1) % 3], c = t[(k + 2) % 3];
+			faces.push_back({a, w, c});
+			faces.push_back({w, b, c});
+			changed = true;
+		}
+		all.F.swap(faces);
+		if (!changed) break;
+		directed.clear();
+		for (const Tri& t : all.F)
+			for (int k2 = 0; k2 < 3; ++k2) directed.insert({t[k2], t[(k2 + 1) % 3]});
+	}
+	// Compact.
+	TriMesh          out;
+	std::vector<int> id_new(all.V.size(), -1);
+	for (const Tri& t : all.F) {
+		Tri u;
+		for (int k = 0; k < 3; ++k) {
+			int& i = id_new[t[k]];
+			if (i < 0) {
+				i = (int) out.V.size();
+				out.V.push_back(all.V[t[k]]);
+			}
+			u[k] = i;
+		}
+		out.F.push_back(u);
+	}
+	return out;
 }
 
 namespace {

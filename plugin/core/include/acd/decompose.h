@@ -76,8 +76,21 @@ struct Decomposition
 	// Leaves in a stable order (by tree path).
 	std::vector<int> leaves() const;
 	double           max_leaf_concavity() const;
-	std::string      to_json() const;
+	// The tree as JSON; with `geometry`, also each node's convex hull and each leaf's mesh (what
+	// level_of_detail and rebuild_solid need to serve coarser levels later without recomputing).
+	std::string to_json(bool geometry = false) const;
 };
+
+// Level of detail from a finished tree, without recomputing: the nodes where the tree is cut when a
+// piece may keep concavity up to `tau` (descend from the root while a node exceeds `tau`, holds a
+// cavity that is not kept, or stands for several disjoint solids), or, with depth >= 0, the nodes at
+// that depth (and leaves above it). Node ids in path order.
+std::vector<int> level_of_detail(const Decomposition& D, double tau, int depth = -1);
+
+// The solid of node `id` rebuilt from the leaf meshes below it: the caps of the cuts inside the
+// subtree are dropped, vertices welded, and the vertices that later cuts added on one side of a cap's
+// rim are inserted into the other side's edges, so the result is closed again.
+TriMesh rebuild_solid(const Decomposition& D, int id);
 
 Decomposition decompose(const Solid& solid, const DecomposeOptions& options);
 
