@@ -9,7 +9,9 @@
 #include "meshlab_convert.h"
 
 #include <acd/decompose.h>
+#include <acd/hull_union.h>
 #include <acd/polygon.h>
+#include <acd/skeleton.h>
 #include <acd/preprocess.h>
 
 #include <vcg/complex/algorithms/update/color.h>
@@ -98,7 +100,7 @@ vcg::Color4b part_color(int i)
 
 FilterACD::FilterACD()
 {
-	typeList = {NOTCH_CONCAVITY, CONVEX_DECOMPOSITION, POLYGON_DECOMPOSITION, LEVEL_OF_DETAIL};
+	typeList = {NOTCH_CONCAVITY, CONVEX_DECOMPOSITION, POLYGON_DECOMPOSITION, LEVEL_OF_DETAIL, SKELETON, HULL_UNION};
 	for (ActionIDType tt : types()) actionList.push_back(new QAction(filterName(tt), this));
 }
 
@@ -111,6 +113,8 @@ QString FilterACD::filterName(ActionIDType f) const
 	case CONVEX_DECOMPOSITION: return "Convex Decomposition: Approximate Convex Decomposition";
 	case POLYGON_DECOMPOSITION: return "Convex Decomposition: Approximate Convex Decomposition of a Polygon";
 	case LEVEL_OF_DETAIL: return "Convex Decomposition: Level of Detail from a Saved Tree";
+	case SKELETON: return "Convex Decomposition: Skeleton";
+	case HULL_UNION: return "Convex Decomposition: Union of Part Hulls (Simplification)";
 	default: assert(0); return QString();
 	}
 }
@@ -122,6 +126,8 @@ QString FilterACD::pythonFilterName(ActionIDType f) const
 	case CONVEX_DECOMPOSITION: return "generate_approximate_convex_decomposition";
 	case POLYGON_DECOMPOSITION: return "generate_polygon_approximate_convex_decomposition";
 	case LEVEL_OF_DETAIL: return "generate_convex_decomposition_level_of_detail";
+	case SKELETON: return "generate_skeleton_from_convex_decomposition";
+	case HULL_UNION: return "generate_convex_hull_union";
 	default: assert(0); return QString();
 	}
 }
@@ -156,6 +162,20 @@ QString FilterACD::filterInfo(ActionIDType f) const
 		               "concavity is at most the given tau (at least the tau it was computed with), or at a "
 		               "given depth. Each part is rebuilt from the saved leaves below it; its saved convex hull "
 		               "can be added too.") + kCitation;
+	case SKELETON:
+		return QString("Decomposes the mesh (same parameters as the decomposition) and extracts a skeleton from "
+		               "the parts (the paper's Section 7): each part's principal axis through its centroid, "
+		               "clipped to the part; a part whose axis leaves it or runs off-centre is split further "
+		               "across its axis; the skeletons of the two sides of each cut are joined through the "
+		               "centre of the cut's cross-section. Output: an edge-mesh layer coloured by part.") +
+		       kCitation;
+	case HULL_UNION:
+		return QString("Decomposes the mesh and simplifies it by the union of its parts' convex hulls (the "
+		               "paper's Figure 18): one layer per hull (optionally at most N vertices, as physics "
+		               "engines need) and one merged layer, either the hulls together (overlapping shells) or "
+		               "their true boolean union (CGAL corefinement, exact constructions). Reports the face "
+		               "count reduction and the volume IoU between the union and the mesh.") +
+		       kCitation;
 	default: assert(0); return QString();
 	}
 }
@@ -166,7 +186,9 @@ FilterPlugin::FilterClass FilterACD::getClass(const QAction* a) const
 	case NOTCH_CONCAVITY: return FilterClass(Quality + Measure);
 	case CONVEX_DECOMPOSITION:
 	case POLYGON_DECOMPOSITION:
-	case LEVEL_OF_DETAIL: return FilterClass(Remeshing + Layer);
+	case LEVEL_OF_DETAIL:
+	case SKELETON:
+	case HULL_UNION: return FilterClass(Remeshing + Layer);
 	default: assert(0); return Generic;
 	}
 }
@@ -234,9 +256,9 @@ RichParameterList FilterACD::initParameterList(const QAction* a, const MeshModel
 		                    "Add each part's saved convex hull as a layer (acd_hull_<path>)."));
 		return p;
 	}
-	if (ID(a) != CONVEX_DECOMPOSITION) return p;
+	if (ID(a) == NOTCH_CONCAVITY) return p;
 	p.addParam(RichFloat(
-		"tau", 2.0, "Concavity tolerance (tau)",
+		"tau", ID(a) == HULL_UNION ? 5.0 : ID(a) == SKELETON ? 3.0 : 2.0, "Concavity tolerance (tau)",
 		"Largest concavity a part may keep. With tau_unit = percent_of_size it is a percentage of the "
 		"diameter of the mesh's smallest enclosing sphere (a size that does not change when the mesh "
 		"is rotated); with model_units it is an absolute length."));
@@ -265,10 +287,12 @@ RichParameterList FilterACD::initParameterList(const QAction* a, const MeshModel
 		"max_parts", 0, "Maximum number of parts",
 		"Stop after this many parts (0 = no limit); the most concave notches are cut first, and the "
 		"result reports whether the limit was reached."));
-	p.addParam(RichBool(
-		"output_hulls", false, "Also add part hulls",
-		"Add the convex hull of each part as a layer too (named acd_hull_<path>)."));
-	p.addParam(RichInt(
+	if (ID(a) == CONVEX_DECOMPOSITION)
+		p.addParam(RichBool(
+			"output_hulls", false, "Also add part hulls",
+			"Add the convex hull of each part as a layer too (named acd_hull_<path>)."));
+	if (ID(a) == CONVEX_DECOMPOSITION || ID(a) == HULL_UNION)
+		p.addParam(RichInt(
 		"max_hull_vertices", 0, "Maximum hull vertices",
 		"With output_hulls: limit each hull to this many vertices (0 = no limit), as physics engines "
 		"require; extra vertices are dropped (the hull shrinks slightly)."));
@@ -294,6 +318,23 @@ RichParameterList FilterACD::initParameterList(const QAction* a, const MeshModel
 	p.addParam(RichFloat(
 		"time_limit", 0, "Time limit (s)",
 		"Stop cutting after this many seconds (0 = no limit) and return the parts found so far."));
+	if (ID(a) == SKELETON) {
+		p.addParam(RichInt("max_refinement", 3, "Skeleton: refinement depth",
+		                   "A part whose axis leaves it or runs off-centre is split across its axis, at most "
+		                   "this many times over (0 = never)."));
+		p.addParam(RichFloat("off_centre", 0.25, "Skeleton: off-centre limit",
+		                     "Refine a part when the middle of its axis chord is farther than this fraction of "
+		                     "the chord's length from the part's centroid."));
+		return p;
+	}
+	if (ID(a) == HULL_UNION) {
+		p.addParam(RichEnum("merge", 0, QStringList{"together", "boolean_union"}, "Merged layer",
+		                    "together: the hulls in one layer (overlapping shells; fast); boolean_union: their true "
+		                    "union by CGAL corefinement with exact constructions (one closed surface; slower)."));
+		p.addParam(RichInt("iou_samples", 200000, "IoU samples",
+		                   "Monte Carlo samples for the volume IoU between the union and the mesh."));
+		return p;
+	}
 	p.addParam(RichString(
 		"tree_file", "", "Save tree as (JSON)",
 		"If set, the whole cut tree (nodes, parents, paths, planes, concavity, volume) is written to "
@@ -314,6 +355,8 @@ std::map<std::string, QVariant> FilterACD::applyFilter(
 	case CONVEX_DECOMPOSITION: return guarded([&] { return decompose(par, md, cb); });
 	case POLYGON_DECOMPOSITION: return guarded([&] { return decomposePolygon(par, md, cb); });
 	case LEVEL_OF_DETAIL: return guarded([&] { return levelOfDetail(par, md, cb); });
+	case SKELETON: return guarded([&] { return skeleton(par, md, cb); });
+	case HULL_UNION: return guarded([&] { return hullUnion(par, md, cb); });
 	default: wrongActionCalled(action);
 	}
 	return {};
@@ -360,11 +403,8 @@ std::map<std::string, QVariant> FilterACD::notchConcavity(MeshModel& mm, vcg::Ca
 	};
 }
 
-std::map<std::string, QVariant>
-FilterACD::decompose(const RichParameterList& par, MeshDocument& md, vcg::CallBackPos* cb)
+FilterACD::Run FilterACD::runDecomposition(const RichParameterList& par, MeshModel& input, vcg::CallBackPos* cb)
 {
-	const auto   t0    = std::chrono::steady_clock::now();
-	MeshModel&   input = *md.mm();
 	acd::TriMesh raw   = acdml::to_trimesh(input.cm);
 	const double avail = available_memory();
 	if (avail > 0 && kBytesPerFace * raw.F.size() > avail)
@@ -417,6 +457,19 @@ FilterACD::decompose(const RichParameterList& par, MeshDocument& md, vcg::CallBa
 	if (s.unreferenced_vertices > 0) log("%d unreferenced vertices were ignored.", s.unreferenced_vertices);
 	if (s.split_vertices > 0) log("%d non-manifold vertices were split into one copy per fan.", s.split_vertices);
 	acd::Decomposition d = acd::decompose(s, o);
+	return {std::move(s), o, size, std::move(d)};
+}
+
+std::map<std::string, QVariant>
+FilterACD::decompose(const RichParameterList& par, MeshDocument& md, vcg::CallBackPos* cb)
+{
+	const auto          t0    = std::chrono::steady_clock::now();
+	MeshModel&          input = *md.mm();
+	Run                 run   = runDecomposition(par, input, cb);
+	const acd::Solid&   s     = run.solid;
+	const auto&         o     = run.options;
+	const double        size  = run.size;
+	acd::Decomposition& d     = run.d;
 
 	const bool hulls     = par.getBool("output_hulls");
 	const int  max_hullv = par.getInt("max_hull_vertices");
@@ -476,6 +529,93 @@ FilterACD::decompose(const RichParameterList& par, MeshDocument& md, vcg::CallBa
 		{"hole_cuts", d.hole_cuts},
 		{"kept_cavities", d.kept_cavities},
 		{"tau_convex", d.kept_cavities == 0 && d.max_leaf_concavity() <= o.tau},
+	};
+}
+
+std::map<std::string, QVariant> FilterACD::skeleton(const RichParameterList& par, MeshDocument& md, vcg::CallBackPos* cb)
+{
+	const auto      t0    = std::chrono::steady_clock::now();
+	MeshModel&      input = *md.mm();
+	const Run       run   = runDecomposition(par, input, cb);
+	acd::SkeletonOptions so;
+	so.max_refinement = par.getInt("max_refinement");
+	so.off_centre     = par.getFloat("off_centre");
+	if (so.max_refinement < 0 || !(so.off_centre > 0)) throw MLException("max_refinement must be >= 0 and off_centre > 0.");
+	if (cb) cb(99, "Extracting the skeleton...");
+	const acd::Skeleton sk = acd::skeleton(run.d, so);
+	MeshModel*          layer = md.addNewMesh("", "acd_skeleton", false);
+	CMeshO&             m     = layer->cm;
+	auto vi = vcg::tri::Allocator<CMeshO>::AddVertices(m, sk.V.size());
+	for (const auto& p : sk.V) (vi++)->P() = CMeshO::CoordType(p.x(), p.y(), p.z());
+	auto ei = vcg::tri::Allocator<CMeshO>::AddEdges(m, sk.E.size());
+	for (const auto& e : sk.E) {
+		ei->V(0) = &m.vert[e[0]];
+		ei->V(1) = &m.vert[e[1]];
+		++ei;
+	}
+	m.Tr = input.cm.Tr;
+	layer->updateDataMask(MeshModel::MM_VERTCOLOR);
+	for (size_t i = 0; i < sk.V.size(); ++i)
+		m.vert[i].C() = sk.piece[i] < 0 ? vcg::Color4b(vcg::Color4b::White) : part_color(sk.piece[i]);
+	layer->updateBoxAndNormals();
+	const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+	const int    comps = sk.components();
+	log("Skeleton: %d vertices, %d edges, %d components, from %d parts (%d refinement splits), %.2f s",
+	    (int) sk.V.size(), (int) sk.E.size(), comps, (int) run.d.leaves().size(), sk.refined, secs);
+	return {
+		{"vertices", (int) sk.V.size()},
+		{"edges", (int) sk.E.size()},
+		{"components", comps},
+		{"parts", (int) run.d.leaves().size()},
+		{"pieces", sk.pieces},
+		{"refinements", sk.refined},
+		{"time", secs},
+	};
+}
+
+std::map<std::string, QVariant> FilterACD::hullUnion(const RichParameterList& par, MeshDocument& md, vcg::CallBackPos* cb)
+{
+	const auto t0    = std::chrono::steady_clock::now();
+	MeshModel& input = *md.mm();
+	const Run  run   = runDecomposition(par, input, cb);
+	const int  maxv  = par.getInt("max_hull_vertices");
+	std::vector<acd::TriMesh> hulls;
+	int                       idx = 0;
+	for (int li : run.d.leaves()) {
+		const acd::Node& n = run.d.nodes[li];
+		acd::TriMesh     h = acd::ConvexHull(n.mesh.V).mesh();
+		if (maxv > 3 && (int) h.V.size() > maxv) h = acd::simplify_hull(h, maxv);
+		MeshModel* layer = md.addNewMesh("", QString("acd_hull_%1").arg(QString::fromStdString(n.path)), false);
+		acdml::from_trimesh(h, layer->cm);
+		layer->cm.Tr = input.cm.Tr;
+		layer->updateDataMask(MeshModel::MM_VERTCOLOR);
+		vcg::tri::UpdateColor<CMeshO>::PerVertexConstant(layer->cm, part_color(idx++));
+		layer->updateBoxAndNormals();
+		hulls.push_back(std::move(h));
+	}
+	const bool boolean = par.getEnum("merge") == 1;
+	if (cb) cb(99, boolean ? "Boolean union of the hulls..." : "Merging the hulls...");
+	const acd::TriMesh merged = acd::merge_hulls(hulls, boolean);
+	MeshModel*         layer  = md.addNewMesh("", "acd_hull_union", false);
+	acdml::from_trimesh(merged, layer->cm);
+	layer->cm.Tr = input.cm.Tr;
+	layer->updateBoxAndNormals();
+	const int samples = par.getInt("iou_samples");
+	double    se      = 0;
+	const double iou  = samples > 0 ? acd::volume_iou(run.solid.mesh, hulls, samples, 1, &se) : 0;
+	const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+	const double reduction = merged.F.empty() ? 0 : double(run.solid.mesh.F.size()) / double(merged.F.size());
+	log("Hull union: %d hulls, %zu faces merged (%s) from %zu input faces (%.1fx fewer), volume IoU %.4f +- %.4f, %.2f s",
+	    idx, merged.F.size(), boolean ? "boolean union" : "together", run.solid.mesh.F.size(), reduction, iou, se, secs);
+	return {
+		{"hulls", idx},
+		{"input_faces", (int) run.solid.mesh.F.size()},
+		{"union_faces", (int) merged.F.size()},
+		{"face_reduction", reduction},
+		{"volume_iou", iou},
+		{"volume_iou_stderr", se},
+		{"boolean_union", boolean},
+		{"time", secs},
 	};
 }
 

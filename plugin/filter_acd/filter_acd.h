@@ -7,6 +7,8 @@
 
 #include <common/plugins/interfaces/filter_plugin.h>
 
+#include <acd/decompose.h>
+
 class FilterACD : public QObject, public FilterPlugin
 {
 	Q_OBJECT
@@ -14,7 +16,7 @@ class FilterACD : public QObject, public FilterPlugin
 	Q_INTERFACES(FilterPlugin)
 
 public:
-	enum FilterIds { NOTCH_CONCAVITY, CONVEX_DECOMPOSITION, POLYGON_DECOMPOSITION, LEVEL_OF_DETAIL };
+	enum FilterIds { NOTCH_CONCAVITY, CONVEX_DECOMPOSITION, POLYGON_DECOMPOSITION, LEVEL_OF_DETAIL, SKELETON, HULL_UNION };
 
 	FilterACD();
 
@@ -37,9 +39,21 @@ public:
 		vcg::CallBackPos*        cb);
 
 private:
+	// The 3D decomposition as the filters that build on it run it: input checks, preprocessing,
+	// options from the shared parameters, log lines.
+	struct Run
+	{
+		acd::Solid            solid;
+		acd::DecomposeOptions options;
+		double                size = 0;
+		acd::Decomposition    d;
+	};
+	Run runDecomposition(const RichParameterList& par, MeshModel& input, vcg::CallBackPos* cb);
 	std::map<std::string, QVariant> notchConcavity(MeshModel& m, vcg::CallBackPos* cb);
 	std::map<std::string, QVariant>
 	decompose(const RichParameterList& par, MeshDocument& md, vcg::CallBackPos* cb);
+	std::map<std::string, QVariant> skeleton(const RichParameterList& par, MeshDocument& md, vcg::CallBackPos* cb);
+	std::map<std::string, QVariant> hullUnion(const RichParameterList& par, MeshDocument& md, vcg::CallBackPos* cb);
 	std::map<std::string, QVariant>
 	levelOfDetail(const RichParameterList& par, MeshDocument& md, vcg::CallBackPos* cb);
 	std::map<std::string, QVariant>

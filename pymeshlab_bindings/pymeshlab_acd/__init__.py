@@ -25,6 +25,8 @@ FILTERS = (
     "generate_approximate_convex_decomposition",
     "generate_polygon_approximate_convex_decomposition",
     "generate_convex_decomposition_level_of_detail",
+    "generate_skeleton_from_convex_decomposition",
+    "generate_convex_hull_union",
 )
 
 _PLUGIN = "libfilter_acd.so"

@@ -1,0 +1,124 @@
+"""Skeleton and hull-union simplification from the decomposition (issue 7, part). Checked here:
+skeleton points inside the mesh (ray parity in numpy), connectivity (union-find), the union's volume
+IoU re-estimated in numpy, face counts."""
+import numpy as np
+import pymeshlab
+import pytest
+
+import pymeshlab_acd
+from conftest import BUNNY, SHARED, add_mesh, inside, is_closed_manifold, torus, volume
+
+
+def layer(ms, label):
+    return next(ms.mesh(i) for i in pymeshlab_acd.mesh_ids(ms) if ms.mesh(i).label() == label)
+
+
+def samples_along(m, n, seed=0):
+    V, E = m.vertex_matrix(), m.edge_matrix()
+    rng = np.random.default_rng(seed)
+    L = np.linalg.norm(V[E[:, 0]] - V[E[:, 1]], axis=1)
+    pick = rng.choice(len(E), n, p=L / L.sum())
+    s = rng.random(n)[:, None]
+    return V[E[pick, 0]] * (1 - s) + V[E[pick, 1]] * s
+
+
+def components(m):
+    V, E = m.vertex_matrix(), m.edge_matrix()
+    parent = list(range(len(V)))
+
+    def root(x):
+        while parent[x] != x:
+            parent[x] = parent[parent[x]]
+            x = parent[x]
+        return x
+    for a, b in E.tolist():
+        parent[root(a)] = root(b)
+    return len({root(v) for v in range(len(V))})
+
+
+@pytest.mark.parametrize("name", ["bunny", "horse"])
+def test_skeleton_inside_and_connected(ms, name):
+    path = BUNNY if name == "bunny" else SHARED / "horse.ply"
+    if not pathlib_exists(path):
+        pytest.skip(f"{path} not present")
+    ms.load_new_mesh(str(path))
+    V0, F0 = ms.mesh(0).vertex_matrix(), ms.mesh(0).face_matrix()
+    res = ms.generate_skeleton_from_convex_decomposition(cut_plane_selection="bisector")
+    sk = layer(ms, "acd_skeleton")
+    assert sk.edge_number() == res["edges"] > 0 and sk.face_number() == 0
+    assert components(sk) == 1 == res["components"]
+    pts = samples_along(sk, 2000)
+    ratio = inside(V0, F0, pts).mean()
+    print(f"{name}: skeleton of {res['parts']} parts ({res['refinements']} refinements): "
+          f"{sk.vertex_number()} vertices, {ratio:.4f} of 2000 points inside")
+    assert ratio >= 0.99
+
+
+def pathlib_exists(p):
+    import pathlib
+    return pathlib.Path(p).exists()
+
+
+def test_skeleton_refines_bent_parts(ms):
+    # a ring at a tau that leaves curved arcs: their axes leave them, so they are split further
+    V, F = torus(R=2.0, r=0.5)
+    add_mesh(ms, V, F)
+    res = ms.generate_skeleton_from_convex_decomposition(tau=0.3, tau_unit="model_units")
+    assert res["refinements"] > 0 and res["pieces"] == res["parts"] + res["refinements"]
+    assert res["components"] == 1
+
+
+def test_skeleton_under_noise_is_measured(ms):
+    # Gaussian noise of 0.5% of the bbox diagonal (the noisy copy is alpha-wrapped first: its faces
+    # cross each other). Recorded, not yet within the 2% the issue asks for (see README).
+    ms.load_new_mesh(BUNNY)
+    V0, F0 = ms.mesh(0).vertex_matrix(), ms.mesh(0).face_matrix()
+    diag = np.linalg.norm(V0.max(0) - V0.min(0))
+    ms.generate_skeleton_from_convex_decomposition(cut_plane_selection="bisector")
+    A = samples_along(layer(ms, "acd_skeleton"), 2000)
+    noisy = pymeshlab.MeshSet()
+    add_mesh(noisy, V0 + np.random.default_rng(1).normal(scale=0.005 * diag, size=V0.shape), F0)
+    noisy.generate_skeleton_from_convex_decomposition(cut_plane_selection="bisector", preprocessing="alpha_wrap")
+    B = samples_along(layer(noisy, "acd_skeleton"), 2000)
+    d = lambda X, Y: np.min(np.linalg.norm(X[:, None, :] - Y[None, ::4, :], axis=2), axis=1).mean()
+    mean = 0.5 * (d(A, B) + d(B, A)) / diag
+    print(f"bunny skeleton, noise 0.5% of the diagonal: mean distance {mean:.4f} of the diagonal")
+    assert mean < 0.05
+
+
+@pytest.mark.parametrize("merge", ["together", "boolean_union"])
+def test_hull_union_simplifies_faithfully(ms, merge):
+    ms.load_new_mesh(BUNNY)
+    V0, F0 = ms.mesh(0).vertex_matrix(), ms.mesh(0).face_matrix()
+    maxv = 64 if merge == "together" else 0   # bounded hulls (as physics engines need), or exact ones
+    res = ms.generate_convex_hull_union(tau=3.0, cut_plane_selection="bisector", max_hull_vertices=maxv, merge=merge,
+                                        iou_samples=100000)
+    hulls = [ms.mesh(i) for i in pymeshlab_acd.mesh_ids(ms) if ms.mesh(i).label().startswith("acd_hull_")
+             and ms.mesh(i).label() != "acd_hull_union"]
+    union = layer(ms, "acd_hull_union")
+    assert len(hulls) == res["hulls"] >= 2
+    assert all((maxv == 0 or h.vertex_number() <= maxv) and is_closed_manifold(h.face_matrix()) for h in hulls)
+    assert union.face_number() == res["union_faces"] < F0.shape[0]
+    if merge == "boolean_union":
+        assert is_closed_manifold(union.face_matrix())
+    else:
+        assert union.face_number() == sum(h.face_number() for h in hulls)
+    # IoU re-estimated here: points in the bounding box, inside the mesh vs inside some hull
+    rng = np.random.default_rng(5)
+    lo, hi = V0.min(0), V0.max(0)
+    P = rng.uniform(lo - 0.05 * (hi - lo), hi + 0.05 * (hi - lo), size=(4000, 3))
+    in_mesh = inside(V0, F0, P)
+    in_hull = np.zeros(len(P), bool)
+    for h in hulls:
+        Vh, Fh = h.vertex_matrix(), h.face_matrix()
+        n = np.cross(Vh[Fh[:, 1]] - Vh[Fh[:, 0]], Vh[Fh[:, 2]] - Vh[Fh[:, 0]])
+        off = np.einsum("ij,ij->i", n, Vh[Fh[:, 0]])
+        in_hull |= np.all(P @ n.T <= off + 1e-12, axis=1)
+    iou = (in_mesh & in_hull).sum() / (in_mesh | in_hull).sum()
+    print(f"hull union ({merge}): {res['hulls']} hulls, {res['union_faces']} faces from {res['input_faces']} "
+          f"({res['face_reduction']:.1f}x fewer), IoU {res['volume_iou']:.3f} (filter) / {iou:.3f} (test)")
+    assert abs(iou - res["volume_iou"]) < 0.02 and res["volume_iou"] > 0.9
+    if maxv == 0:
+        # the parts tile the mesh, so their exact hulls hold it: IoU >= mesh volume / sum of hull volumes
+        bound = volume(V0, F0) / sum(volume(h.vertex_matrix(), h.face_matrix()) for h in hulls)
+        assert res["volume_iou"] >= bound - 4 * res["volume_iou_stderr"]
