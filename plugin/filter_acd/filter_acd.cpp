@@ -792,7 +792,9 @@ FilterACD::decomposePolygon(const RichParameterList& par, MeshDocument& md, vcg:
 			const acd::Polygon2& piece = d.nodes[li].polygon;
 			std::vector<acd::Vec2> V2;
 			acd::TriMesh           t;
-			acd::triangulate(piece, V2, t.F);
+			if (!acd::triangulate(piece, V2, t.F))
+				log("Warning: piece %s could not be triangulated (its loops touch); only its outline is added.",
+				    d.nodes[li].path.c_str());
 			for (const acd::Vec2& q : V2) t.V.push_back(pl.lift(q));
 			// The outline: the loops' edges, in the order triangulate() numbered their points.
 			std::vector<std::array<int, 2>> outline;

@@ -505,7 +505,7 @@ PlanarLoops planar_loops(const std::vector<Vec3>& V, const std::vector<Tri>& F, 
 	return out;
 }
 
-void triangulate(const Polygon2& p, std::vector<Vec2>& V, std::vector<Tri>& F)
+bool triangulate(const Polygon2& p, std::vector<Vec2>& V, std::vector<Tri>& F)
 {
 	using Vb  = CGAL::Triangulation_vertex_base_with_info_2<int, K>;
 	using Fbi = CGAL::Triangulation_face_base_with_info_2<int, K>;
@@ -515,16 +515,22 @@ void triangulate(const Polygon2& p, std::vector<Vec2>& V, std::vector<Tri>& F)
 	V.clear();
 	F.clear();
 	CDT cdt;
-	for (int l = 0; l <= (int) p.holes.size(); ++l) {
-		const Loop2&                    L = loop_of(p, l);
-		std::vector<CDT::Vertex_handle> vh;
-		for (const Vec2& q : L) {
-			vh.push_back(cdt.insert(K::Point_2(q.x(), q.y())));
-			vh.back()->info() = (int) V.size();
-			V.push_back(q);
+	try {
+		for (int l = 0; l <= (int) p.holes.size(); ++l) {
+			const Loop2&                    L = loop_of(p, l);
+			std::vector<CDT::Vertex_handle> vh;
+			for (const Vec2& q : L) {
+				vh.push_back(cdt.insert(K::Point_2(q.x(), q.y())));
+				vh.back()->info() = (int) V.size();
+				V.push_back(q);
+			}
+			for (size_t i = 0; i < vh.size(); ++i) cdt.insert_constraint(vh[i], vh[(i + 1) % vh.size()]);
 		}
-		for (size_t i = 0; i < vh.size(); ++i) cdt.insert_constraint(vh[i], vh[(i + 1) % vh.size()]);
 	}
+	catch (const std::exception&) {
+		return false;   // crossing constraints
+	}
+	if (cdt.number_of_vertices() != V.size()) return false;   // two points merged
 	// Inside = odd nesting level, flooding from the infinite face across constraints.
 	for (auto f : cdt.all_face_handles()) f->info() = -1;
 	std::vector<std::pair<CDT::Face_handle, int>> seeds{{cdt.infinite_face(), 0}};
@@ -549,6 +555,7 @@ void triangulate(const Polygon2& p, std::vector<Vec2>& V, std::vector<Tri>& F)
 	}
 	for (auto f : cdt.finite_face_handles())
 		if (f->info() % 2 == 1) F.push_back({f->vertex(0)->info(), f->vertex(1)->info(), f->vertex(2)->info()});
+	return !F.empty();
 }
 
 std::vector<int> Decomposition2::leaves() const

@@ -1,9 +1,5 @@
 #include "acd/separate.h"
-
-#include <CGAL/Constrained_Delaunay_triangulation_2.h>
-#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
-#include <CGAL/Triangulation_face_base_with_info_2.h>
-#include <CGAL/Triangulation_vertex_base_with_info_2.h>
+#include "acd/polygon.h"
 
 #include <algorithm>
 #include <cmath>
@@ -14,13 +10,7 @@ namespace acd {
 
 namespace {
 
-using K    = CGAL::Exact_predicates_inexact_constructions_kernel;
-using Vb   = CGAL::Triangulation_vertex_base_with_info_2<int, K>;
-using Fbi  = CGAL::Triangulation_face_base_with_info_2<int, K>;
-using Fb   = CGAL::Constrained_triangulation_face_base_2<K, Fbi>;
-using Tds  = CGAL::Triangulation_data_structure_2<Vb, Fb>;
-using CDT  = CGAL::Constrained_Delaunay_triangulation_2<K, Tds, CGAL::No_constraint_intersection_tag>;
-using P2   = Eigen::Vector2d;
+using P2 = Vec2;
 
 struct Loop
 {
@@ -36,69 +26,22 @@ double seg_dist(const P2& p, const P2& a, const P2& b)
 	return (a + t * ab - p).norm();
 }
 
-bool in_polygon(const P2& p, const std::vector<P2>& poly)
-{
-	bool in = false;
-	for (size_t i = 0, j = poly.size() - 1; i < poly.size(); j = i++) {
-		const P2 &a = poly[i], &b = poly[j];
-		if ((a.y() > p.y()) != (b.y() > p.y()) &&
-		    p.x() < (b.x() - a.x()) * (p.y() - a.y()) / (b.y() - a.y()) + a.x())
-			in = !in;
-	}
-	return in;
-}
-
 // Triangulate one region (outer loop + its direct holes); triangles are CCW in the plane's (u, w)
 // frame and index crossing points. False if the loops touch or cross numerically.
 bool triangulate_region(const std::vector<std::vector<P2>>& loops2d, const std::vector<Loop>& loops,
                         const std::vector<int>& region, std::vector<Tri>& tris)
 {
-	CDT    cdt;
-	size_t expected = 0;
-	try {
-		for (int li : region) {
-			const Loop&             L = loops[li];
-			std::vector<CDT::Vertex_handle> vh;
-			for (size_t i = 0; i < L.pts.size(); ++i) {
-				auto v    = cdt.insert(K::Point_2(loops2d[li][i].x(), loops2d[li][i].y()));
-				v->info() = L.pts[i];
-				vh.push_back(v);
-			}
-			expected += L.pts.size();
-			for (size_t i = 0; i < vh.size(); ++i) cdt.insert_constraint(vh[i], vh[(i + 1) % vh.size()]);
-		}
+	Polygon2         poly;
+	std::vector<int> id;   // triangulation vertex -> crossing point, in the same loop order
+	for (int li : region) {
+		(li == region[0] ? poly.outer : poly.holes.emplace_back()) = loops2d[li];
+		id.insert(id.end(), loops[li].pts.begin(), loops[li].pts.end());
 	}
-	catch (const std::exception&) {
-		return false;   // intersecting constraints
-	}
-	if (cdt.number_of_vertices() != expected) return false;   // two points merged
-	// Nesting level of each face: flood from the infinite face; crossing a constraint adds one.
-	for (auto f : cdt.all_face_handles()) f->info() = -1;
-	std::vector<std::pair<CDT::Face_handle, int>> seeds{{cdt.infinite_face(), 0}};
-	std::vector<CDT::Face_handle>                 stack;
-	for (size_t i = 0; i < seeds.size(); ++i) {
-		auto [seed, level] = seeds[i];
-		if (seed->info() != -1) continue;
-		seed->info() = level;
-		stack.assign(1, seed);
-		while (!stack.empty()) {
-			auto f = stack.back();
-			stack.pop_back();
-			for (int e = 0; e < 3; ++e) {
-				auto g = f->neighbor(e);
-				if (g->info() != -1) continue;
-				if (cdt.is_constrained(CDT::Edge(f, e))) seeds.emplace_back(g, level + 1);
-				else {
-					g->info() = level;
-					stack.push_back(g);
-				}
-			}
-		}
-	}
-	for (auto f : cdt.finite_face_handles())
-		if (f->info() % 2 == 1)
-			tris.push_back({f->vertex(0)->info(), f->vertex(1)->info(), f->vertex(2)->info()});
-	return !tris.empty();
+	std::vector<Vec2> V;
+	std::vector<Tri>  F;
+	if (!triangulate(poly, V, F)) return false;
+	for (const Tri& t : F) tris.push_back({id[t[0]], id[t[1]], id[t[2]]});
+	return true;
 }
 
 bool separate_at(const TriMesh& m, const Plane& plane, const Vec3& notch, SplitOutcome& out)
@@ -166,7 +109,7 @@ bool separate_at(const TriMesh& m, const Plane& plane, const Vec3& notch, SplitO
 	}
 	for (size_t i = 0; i < loops.size(); ++i)
 		for (size_t j = 0; j < loops.size(); ++j)
-			if (i != j && in_polygon(l2[i][0], l2[j])) {
+			if (i != j && inside(l2[j], l2[i][0])) {
 				++loops[i].depth;
 				if (loops[i].parent < 0 || loops[j].area < loops[loops[i].parent].area) loops[i].parent = (int) j;
 			}

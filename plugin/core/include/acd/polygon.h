@@ -111,7 +111,8 @@ using Edge = std::array<int, 2>;
 PlanarLoops planar_loops(const std::vector<Vec3>& V, const std::vector<Tri>& F, const std::vector<Edge>& E);
 
 // Triangles of a polygon with holes (constrained Delaunay): vertices are the loops' points in order
-// (outer, then holes), triangles counter-clockwise.
-void triangulate(const Polygon2& p, std::vector<Vec2>& V, std::vector<Tri>& F);
+// (outer, then holes), triangles counter-clockwise; inside is decided by nesting, so the loops'
+// orientation does not matter. False if loops cross or two points coincide (numerically).
+bool triangulate(const Polygon2& p, std::vector<Vec2>& V, std::vector<Tri>& F);
 
 } // namespace acd
