@@ -92,7 +92,7 @@ struct Builder
 	// A cut between the pieces `A` and `B` (plane `pl`): join them through its cross-section's centre.
 	void joint(const Plane& pl, const std::vector<int>& A, const std::vector<int>& B)
 	{
-		auto cap = [&](const std::vector<int>& side, Vec3& centre, int& nearest_piece) {
+		auto cap = [&](const std::vector<int>& side, Vec3& centre) {
 			double area = 0;
 			centre      = Vec3::Zero();
 			for (int i : side)
@@ -107,8 +107,7 @@ struct Builder
 			return area;
 		};
 		Vec3 q;
-		int  unused;
-		if (!(cap(A, q, unused) > 0)) return;
+		if (!(cap(A, q) > 0)) return;
 		const int jq = add_vertex(q, -1);
 		for (const std::vector<int>* side : {&A, &B}) {
 			// the piece of this side whose cap faces lie nearest to the centre
@@ -116,8 +115,7 @@ struct Builder
 			double dmin = HUGE_VAL;
 			for (int i : *side) {
 				Vec3 ci;
-				int  u2;
-				if (!(cap({i}, ci, u2) > 0)) continue;
+				if (!(cap({i}, ci) > 0)) continue;
 				const double d = (ci - q).norm();
 				if (d < dmin) dmin = d, pick = i;
 			}
