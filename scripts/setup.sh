@@ -24,6 +24,10 @@ if pip_need pymeshlab 2025.7.post1; then "$PY" -m pip install -q "pymeshlab==202
 for p in numpy pytest wheel setuptools; do
 	if pip_need "$p" '*'; then "$PY" -m pip install -q "$p"; fi
 done
+# Batch and simulator export (issue 11), and trimesh for independent checks in the tests.
+for pv in tqdm:4.70.1 ray:2.60.0 mujoco:4.0.0 pybullet:3.2.7 trimesh:5.2.0; do
+	if pip_need "${pv%%:*}" "${pv#*:}"; then "$PY" -m pip install -q "${pv%%:*}==${pv#*:}"; fi
+done
 
 bash "$here/build_plugin.sh"
 # Reinstall the package when the plugin binary changed (or it is missing).

@@ -1,5 +1,6 @@
 """Command line: python -m pymeshlab_acd {concavity,decompose} [MESH] [options]
               python -m pymeshlab_acd polygon POLYGON [options]
+              python -m pymeshlab_acd batch IN_DIR OUT_DIR [--workers N] [--ray ADDRESS|local] [options]
 
 MESH defaults to pymeshlab's bundled bunny. POLYGON is a .poly, .svg or plain list-of-loops file (see
 pymeshlab_acd.polygon_io). Progress is printed while the filter runs.
@@ -16,6 +17,7 @@ import pymeshlab
 
 from . import decompose, decompose_polygon, load, mesh_ids
 from . import polygon_io
+from .export import export_decomposition
 
 BUNNY = os.path.join(os.path.dirname(pymeshlab.__file__), "tests", "sample_meshes", "bunny.obj")
 
@@ -51,7 +53,7 @@ def cmd_decompose(a):
     ms = _meshset(a.mesh, a.progress)
     src = ms.current_mesh_id()
     params = dict(tau=a.tau, tau_unit=a.tau_unit, cut_plane_selection=a.cut_plane_selection,
-                  max_parts=a.max_parts, output_hulls=a.hulls, max_hull_vertices=a.max_hull_vertices,
+                  max_parts=a.max_parts, output_hulls=a.hulls or a.export, max_hull_vertices=a.max_hull_vertices,
                   time_limit=a.time_limit, preprocessing=a.preprocessing, wrap_alpha=a.wrap_alpha,
                   wrap_offset=a.wrap_offset, on_self_intersection=a.on_self_intersection,
                   hole_handling=a.hole_handling, hole_order=a.hole_order)
@@ -82,6 +84,39 @@ def cmd_decompose(a):
         summary = {k: v for k, v in res.items() if k != "tree"}
         (out / "summary.json").write_text(json.dumps(summary, indent=1, default=float))
         print(f"wrote            {len(ids)} layers as OBJ, tree.json, summary.json to {out}")
+        if a.export:
+            hulls = [i for i in ids if ms.mesh(i).label().startswith("acd_hull_")]
+            parts = [i for i in ids if i not in hulls]
+            w = export_decomposition(ms, src, parts, hulls, out / "export", name=pathlib.Path(a.mesh).stem,
+                                     scale=a.scale, density=a.density)
+            print(f"exported         {len(hulls)} collision hulls (OBJ, STL), {w['urdf'][0]}, {w['mjcf'][0]}, "
+                  f"{w['mlp'][0]} to {out / 'export'}")
+    elif a.export:
+        raise ValueError("--export needs --out")
+    return 0
+
+
+def cmd_batch(a):
+    from .batch import run_batch
+    fmt = [f.strip() for f in a.formats.split(",") if f.strip()]
+    records = run_batch(a.in_dir, a.out_dir, workers=a.workers, ray_address=a.ray,
+                        ray_runtime_env=json.loads(a.ray_runtime_env) if a.ray_runtime_env else None,
+                        progress=a.progress, tau=a.tau, tau_unit=a.tau_unit,
+                        cut_plane_selection=a.cut_plane_selection, max_parts=a.max_parts,
+                        max_hull_vertices=a.max_hull_vertices, preprocessing=a.preprocessing,
+                        wrap_alpha=a.wrap_alpha, wrap_offset=a.wrap_offset,
+                        time_limit=a.time_limit, timeout=a.timeout, formats=fmt, scale=a.scale, density=a.density)
+    w = max([len(pathlib.Path(r["file"]).name) for r in records] + [4])
+    print(f"{'file':<{w}}  {'status':<11} {'parts':>5} {'concavity %':>11} {'hulls/vol':>9} {'time s':>7}  note")
+    for r in records:
+        ok = r["status"] in ("ok", "done before")
+        print(f"{pathlib.Path(r['file']).name:<{w}}  {r['status']:<11} "
+              + (f"{r['parts']:>5} {r['max_concavity_pct']:>11.3f} {r['hull_volume_ratio']:>9.3f} "
+                 if ok else f"{'-':>5} {'-':>11} {'-':>9} ")
+              + f"{r.get('time', 0):>7.1f}  {r.get('error') or ''}")
+    failed = sum(r["status"] == "failed" for r in records)
+    print(f"{len(records)} meshes, {len(records) - failed} decomposed, {failed} failed; "
+          f"summary: {pathlib.Path(a.out_dir) / 'summary.csv'} and summary.json")
     return 0
 
 
@@ -168,9 +203,37 @@ def main(argv=None):
     d.add_argument("--wrap-alpha", type=float, default=1.0, help="alpha wrap: alpha, %% of size")
     d.add_argument("--wrap-offset", type=float, default=0.1, help="alpha wrap: offset, %% of size")
     d.add_argument("--on-self-intersection", default="warn", choices=["warn", "refuse"])
+    d.add_argument("--export", action="store_true",
+                   help="also write collision hulls (OBJ, STL), a URDF, an MJCF and a MeshLab project to OUT/export")
+    b = sub.add_parser("batch", help="decompose every mesh under a folder, with physics-ready export")
+    b.add_argument("in_dir")
+    b.add_argument("out_dir")
+    b.add_argument("--workers", type=int, default=os.cpu_count() or 1, help="meshes decomposed at once")
+    b.add_argument("--ray", metavar="ADDRESS", help="run on a Ray cluster (ADDRESS, e.g. ray://head:10001 "
+                   "or auto), or 'local' to start a local Ray instance of --workers CPUs")
+    b.add_argument("--ray-runtime-env", metavar="JSON", help="Ray runtime_env for the workers, e.g. "
+                   "'{\"pip\": [\"/shared/pymeshlab_acd-0.1.0-py3-none-any.whl\"]}'")
+    b.add_argument("--tau", type=float, default=3.0, help="concavity tolerance (default 3 = 3%% of size)")
+    b.add_argument("--tau-unit", default="percent_of_size", choices=["percent_of_size", "model_units"])
+    b.add_argument("--cut-plane-selection", default="best", choices=["best", "bisector"])
+    b.add_argument("--max-parts", type=int, default=0)
+    b.add_argument("--max-hull-vertices", type=int, default=64, help="per collision hull (0: no limit)")
+    b.add_argument("--preprocessing", default="auto", choices=["auto", "none", "alpha_wrap"],
+                   help="auto: decompose as given, and alpha-wrap the meshes that cannot be")
+    b.add_argument("--wrap-alpha", type=float, default=1.0, help="alpha wrap: alpha, %% of size (larger "
+                   "bridges bigger holes in open meshes)")
+    b.add_argument("--wrap-offset", type=float, default=0.1, help="alpha wrap: offset, %% of size")
+    b.add_argument("--time-limit", type=float, default=0.0, help="per mesh, in the core (s; 0: none)")
+    b.add_argument("--timeout", type=float, default=1800.0, help="per mesh process, killed after (s; 0: none)")
+    b.add_argument("--formats", default="obj,stl", help="collision hull files: obj, stl or both")
+    b.add_argument("--no-progress", dest="progress", action="store_false", help="no progress bar")
+    for s in (d, b):
+        s.add_argument("--scale", type=float, default=1.0, help="metres per model unit (URDF, MJCF)")
+        s.add_argument("--density", type=float, default=1000.0, help="kg/m^3, for the mass and inertia")
     a = p.parse_args(argv)
     try:
-        return {"concavity": cmd_concavity, "decompose": cmd_decompose, "polygon": cmd_polygon}[a.cmd](a)
+        return {"concavity": cmd_concavity, "decompose": cmd_decompose, "polygon": cmd_polygon,
+                "batch": cmd_batch}[a.cmd](a)
     except (pymeshlab.PyMeshLabException, ValueError, OSError) as e:
         print(f"error: {e}", file=sys.stderr)
         return 1

@@ -90,7 +90,8 @@ def layers(state):
 
 
 @pytest.fixture
-def gui(tmp_path):
+def start_meshlab(tmp_path):
+    """Starts MeshLab on a file (once per test) under its own Xvfb; returns the Gui driver."""
     home = tmp_path / "home"
     plugins = home / ".local/share/VCG/MeshLab_64bit_dp/MeshLabExtraPlugins/2025.07d"
     plugins.mkdir(parents=True)
@@ -102,21 +103,23 @@ def gui(tmp_path):
     (conf / "MeshLab_64bit_dp.conf").write_text(
         "[General]\ninformativeShown=true\n"
         f"lastTimeMeshLabVersionCheckedOnStart={today.strftime('%a %b')} {today.day} {today.year}\n")
+    running = []
 
-    # Xvfb picks a free display and writes its number when it is ready.
-    xvfb = subprocess.Popen(["Xvfb", "-displayfd", "1", "-screen", "0", "1600x1000x24", "-nolisten", "tcp"],
-                            stdout=subprocess.PIPE, stderr=subprocess.DEVNULL, text=True)
-    display = ":" + xvfb.stdout.readline().strip()
-    g = Gui(tmp_path, display)
-    import pymeshlab
-    bunny = Path(pymeshlab.__file__).parent / "tests/sample_meshes/bunny.obj"
-    env = dict(g.env, HOME=str(home), LIBGL_ALWAYS_SOFTWARE="1", LD_PRELOAD=PROBE_SO,
-               ACD_GUI_PROBE=str(g.probe), XDG_RUNTIME_DIR=str(tmp_path))
-    log = open(tmp_path / "meshlab.log", "w")
-    g.proc = subprocess.Popen([EXE, str(bunny)], env=env, cwd=tmp_path, stdout=log, stderr=subprocess.STDOUT)
-    try:
-        yield g
-    finally:
+    def start(path):
+        # Xvfb picks a free display and writes its number when it is ready.
+        xvfb = subprocess.Popen(["Xvfb", "-displayfd", "1", "-screen", "0", "1600x1000x24", "-nolisten", "tcp"],
+                                stdout=subprocess.PIPE, stderr=subprocess.DEVNULL, text=True)
+        display = ":" + xvfb.stdout.readline().strip()
+        g = Gui(tmp_path, display)
+        env = dict(g.env, HOME=str(home), LIBGL_ALWAYS_SOFTWARE="1", LD_PRELOAD=PROBE_SO,
+                   ACD_GUI_PROBE=str(g.probe), XDG_RUNTIME_DIR=str(tmp_path))
+        log = open(tmp_path / "meshlab.log", "w")
+        g.proc = subprocess.Popen([EXE, str(path)], env=env, cwd=tmp_path, stdout=log, stderr=subprocess.STDOUT)
+        running.append((g, xvfb, log))
+        return g
+
+    yield start
+    for g, xvfb, log in running:
         g.proc.terminate()
         try:
             g.proc.wait(10)
@@ -128,15 +131,25 @@ def gui(tmp_path):
         print((tmp_path / "meshlab.log").read_text()[-3000:])
 
 
-def test_decompose_through_the_filter_menu(gui):
-    # MeshLab is up with the bunny as its one layer.
-    gui.wait("the bunny layer", lambda s: [r for r in layers(s) if r[2]["text"] == "bunny"], timeout=120)
+@pytest.fixture
+def gui(start_meshlab):
+    import pymeshlab
+    return start_meshlab(Path(pymeshlab.__file__).parent / "tests/sample_meshes/bunny.obj")
+
+
+def maximise(gui):
     win = subprocess.run(["xdotool", "search", "--name", "^MeshLab 2025"], env=gui.env, capture_output=True,
                          text=True).stdout.split()[0]
     gui.xdo("windowmove", "--sync", win, "0", "0")
     gui.xdo("windowsize", "--sync", win, "1600", "1000")
     gui.xdo("windowfocus", "--sync", win)
     time.sleep(1.5)
+
+
+def test_decompose_through_the_filter_menu(gui):
+    # MeshLab is up with the bunny as its one layer.
+    gui.wait("the bunny layer", lambda s: [r for r in layers(s) if r[2]["text"] == "bunny"], timeout=120)
+    maximise(gui)
     view = gui.state()["views"][0]
     gui.shot("before.png")
 
@@ -211,3 +224,23 @@ def hue_bins(png: Path, viewport):
         if sat > 0.35 and 0.15 < light < 0.9:
             bins[min(35, int(hue * 36))] += 1
     return {i for i, b in enumerate(bins) if b > 0.002 * n}
+
+
+def test_exported_project_opens_with_one_layer_per_part(start_meshlab, tmp_path):
+    """The .mlp written by `decompose --export` (issue 11) opens in the GUI: one layer per part."""
+    import sys
+    out = tmp_path / "export"
+    p = subprocess.run([sys.executable, "-m", "pymeshlab_acd", "decompose", "--tau", "6", "--out", str(out),
+                        "--export", "--no-progress"], capture_output=True, text=True, timeout=600)
+    assert p.returncode == 0, p.stderr
+    parts = json.loads((out / "summary.json").read_text())["parts"]
+    gui = start_meshlab(out / "export" / "bunny.mlp")
+    rows = gui.wait(f"{parts} part layers", lambda s: [r for r in layers(s) if r[2]["text"].startswith("acd_")]
+                    if len(layers(s)) == parts else None, timeout=120)
+    assert all(r[2]["text"].startswith("acd_") for r in rows)
+    maximise(gui)
+    view = gui.state()["views"][0]
+    gui.shot("project.png")
+    hues = hue_bins(SHOTS / "project.png", view)
+    print(f"GUI: the exported project opened with {len(rows)} layers, {len(hues)} hue bins")
+    assert len(hues) >= min(parts, 4)

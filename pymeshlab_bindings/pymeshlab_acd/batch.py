@@ -1,0 +1,300 @@
+"""Batch decomposition: every mesh under a folder, each in its own process, on local workers or a Ray
+cluster; physics-ready export per mesh; resumable; one summary (CSV + JSON) for the whole batch.
+
+Each mesh runs in a child process (``python -m pymeshlab_acd.batch --one``) so a mesh that crashes,
+hangs or exhausts memory costs only its own record, never the batch. Outputs are written to
+``<name>.partial`` and renamed when complete, so a finished folder is never half-written: a rerun skips
+folders whose summary.json says "ok" for the same options and retries the rest.
+"""
+import csv
+import hashlib
+import json
+import os
+import pathlib
+import shutil
+import socket
+import subprocess
+import sys
+import tempfile
+import time
+
+MESH_EXTENSIONS = {".obj", ".ply", ".stl", ".off", ".3ds", ".dae", ".wrl", ".gltf", ".glb", ".vmi"}
+
+DEFAULTS = dict(tau=3.0, tau_unit="percent_of_size", cut_plane_selection="best", max_parts=0,
+                max_hull_vertices=64, preprocessing="auto", wrap_alpha=1.0, wrap_offset=0.1, time_limit=0.0, timeout=1800.0,
+                formats=["obj", "stl"], scale=1.0, density=1000.0)
+
+# The options that change a mesh's outputs (a rerun with other values redoes the mesh).
+_OUTPUT_KEYS = ("tau", "tau_unit", "cut_plane_selection", "max_parts", "max_hull_vertices", "preprocessing",
+                "wrap_alpha", "wrap_offset", "time_limit", "formats", "scale", "density")
+
+SUMMARY_FIELDS = ("file", "status", "parts", "max_concavity", "max_concavity_pct", "hull_volume_ratio",
+                  "preprocessing", "faces", "time", "worker", "error", "output")
+
+
+def options_key(opts):
+    return hashlib.sha1(json.dumps({k: opts[k] for k in _OUTPUT_KEYS}, sort_keys=True).encode()).hexdigest()[:12]
+
+
+def find_meshes(in_dir):
+    """Mesh files under in_dir (recursively), sorted, with their output folder names (relative)."""
+    root = pathlib.Path(in_dir)
+    files = sorted(p for p in root.rglob("*") if p.is_file() and p.suffix.lower() in MESH_EXTENSIONS)
+    stems = {}
+    for p in files:
+        stems.setdefault(p.relative_to(root).with_suffix(""), []).append(p)
+    jobs = []
+    for p in files:
+        rel = p.relative_to(root).with_suffix("")
+        # a.obj and a.ply side by side: keep both, named by extension
+        name = rel if len(stems[rel]) == 1 else rel.with_name(rel.name + "_" + p.suffix[1:].lower())
+        jobs.append((p, name.as_posix()))
+    return jobs
+
+
+# ---- one mesh, in a child process ------------------------------------------------------------
+def decompose_file(src, out_dir, opts):
+    """Decompose one mesh file and export it to out_dir; returns the summary record (raises on failure)."""
+    import numpy as np
+    import pymeshlab
+    from . import decompose, load
+    from .export import merged_layers, export_decomposition, mass_properties
+
+    load()
+    t0 = time.perf_counter()
+    ms = pymeshlab.MeshSet()
+    ms.load_new_mesh(str(src))
+    source = ms.current_mesh_id()
+    params = dict(tau=opts["tau"], tau_unit=opts["tau_unit"], cut_plane_selection=opts["cut_plane_selection"],
+                  max_parts=opts["max_parts"], output_hulls=True, max_hull_vertices=opts["max_hull_vertices"],
+                  time_limit=opts["time_limit"], wrap_alpha=opts["wrap_alpha"], wrap_offset=opts["wrap_offset"])
+    pre, note = opts["preprocessing"], ""
+    try:
+        res, ids = decompose(ms, preprocessing="none" if pre == "auto" else pre, **params)
+        pre = "none" if pre == "auto" else pre
+    except pymeshlab.PyMeshLabException as e:
+        if pre != "auto":
+            raise
+        # Open, non-manifold or otherwise unusable as given: wrap it into a closed solid and go on.
+        note = f"alpha-wrapped: as given, {_reason(e)}"
+        ms.set_current_mesh(source)
+        res, ids = decompose(ms, preprocessing="alpha_wrap", **params)
+        pre = "alpha_wrap"
+    labels = {i: ms.mesh(i).label() for i in ids}
+    hulls = [i for i in ids if labels[i].startswith("acd_hull_")]
+    parts = [i for i in ids if i not in hulls and labels[i].startswith("acd_")]
+    written = export_decomposition(ms, source, parts, hulls, out_dir, name=pathlib.Path(src).stem,
+                                   formats=tuple(opts["formats"]), scale=opts["scale"], density=opts["density"])
+    vol = mass_properties(*merged_layers(ms, parts))[0]      # the solid decomposed (the wrap, if wrapped)
+    hull_vol = sum(mass_properties(ms.mesh(i).vertex_matrix(), ms.mesh(i).face_matrix())[0] for i in hulls)
+    m = ms.mesh(source)
+    diag = float(np.linalg.norm(m.bounding_box().max() - m.bounding_box().min()))
+    rec = dict(status="ok", parts=res["parts"], max_concavity=res["max_concavity"],
+               max_concavity_pct=100.0 * res["max_concavity"] / diag if diag > 0 else 0.0,
+               hull_volume_ratio=hull_vol / vol, preprocessing=pre, faces=ms.mesh(source).face_number(),
+               time=time.perf_counter() - t0, error=note, files=written, options_key=options_key(opts),
+               worker=f"{socket.gethostname()}:{os.getpid()}", max_parts_reached=res["max_parts_reached"],
+               time_limit_reached=res.get("time_limit_reached", False))
+    (pathlib.Path(out_dir) / "summary.json").write_text(json.dumps(rec, indent=1, default=float))
+    return rec
+
+
+def _reason(e):
+    """One line of why: MeshLab's details without pymeshlab's 'Failed to apply filter' preamble."""
+    text = str(e).strip()
+    if "Details:" in text:
+        text = text.split("Details:", 1)[1]
+    return " ".join(text.split()) or type(e).__name__
+
+
+def run_child(src, out_dir, opts):
+    """Run decompose_file in a child process; returns its record, or a failure record."""
+    out_dir = pathlib.Path(out_dir)
+    tmp = out_dir.with_name(out_dir.name + ".partial")
+    shutil.rmtree(tmp, ignore_errors=True)
+    tmp.mkdir(parents=True)
+    t0 = time.perf_counter()
+    cmd = [sys.executable, "-m", "pymeshlab_acd.batch", "--one", str(src), str(tmp), json.dumps(opts)]
+    try:
+        p = subprocess.run(cmd, capture_output=True, text=True, timeout=opts["timeout"] or None)
+        err = None
+        if p.returncode != 0:
+            lines = [l for l in p.stderr.strip().splitlines() if l.strip()]
+            err = (lines[-1] if lines and p.returncode > 0
+                   else f"the process died (exit {p.returncode}); last output: {lines[-1] if lines else '-'}")
+    except subprocess.TimeoutExpired:
+        err = f"timed out after {opts['timeout']:.0f} s"
+    if err is None and (tmp / "summary.json").is_file():
+        shutil.rmtree(out_dir, ignore_errors=True)
+        tmp.rename(out_dir)
+        return json.loads((out_dir / "summary.json").read_text())
+    shutil.rmtree(tmp, ignore_errors=True)
+    return dict(status="failed", error=(err or "no output").removeprefix("error: "),
+                time=time.perf_counter() - t0)
+
+
+def finished(out_dir, opts):
+    """The record of an earlier run of the same options, if it completed."""
+    f = pathlib.Path(out_dir) / "summary.json"
+    try:
+        rec = json.loads(f.read_text())
+    except (OSError, ValueError):
+        return None
+    return rec if rec.get("status") == "ok" and rec.get("options_key") == options_key(opts) else None
+
+
+# ---- Ray: the same child process, on whichever node runs the task -------------------------------
+def _ray_task(name, data, basename, opts):
+    """Runs on a Ray worker: the mesh travels as bytes and the outputs come back as bytes, so the
+    nodes need no shared file system, only pymeshlab_acd installed."""
+    with tempfile.TemporaryDirectory() as tmp:
+        src = pathlib.Path(tmp) / basename      # the name gives the model files theirs
+        src.write_bytes(data)
+        rec = run_child(src, pathlib.Path(tmp) / "out", opts)
+        files = {}
+        if rec["status"] == "ok":
+            base = pathlib.Path(tmp) / "out"
+            files = {p.relative_to(base).as_posix(): p.read_bytes() for p in base.rglob("*") if p.is_file()}
+        rec["worker"] = f"ray:{socket.gethostname()}:{os.getpid()}"   # the Ray worker, not its child
+        return name, rec, files
+
+
+def _run_ray(todo, out_root, opts, address, workers, runtime_env, on_done):
+    import ray
+    init = dict(include_dashboard=False, log_to_driver=False, ignore_reinit_error=True)
+    if runtime_env:
+        init["runtime_env"] = runtime_env
+    started_here = not ray.is_initialized()
+    if address == "local":
+        ray.init(num_cpus=workers, **init)
+    else:
+        ray.init(address=address, **init)
+    try:
+        task = ray.remote(num_cpus=1, max_retries=0)(_ray_task)
+        pending = [task.remote(name, src.read_bytes(), src.name, opts) for src, name in todo]
+        while pending:
+            done, pending = ray.wait(pending, num_returns=1)
+            for ref in done:
+                try:
+                    name, rec, files = ray.get(ref)
+                except Exception as e:   # the worker itself died: record, go on
+                    on_done(None, dict(status="failed", error=f"Ray task failed: {e}".splitlines()[0]))
+                    continue
+                if rec["status"] == "ok":
+                    out = out_root / name
+                    tmp = out.with_name(out.name + ".partial")
+                    shutil.rmtree(tmp, ignore_errors=True)
+                    for rel, data in files.items():
+                        (tmp / rel).parent.mkdir(parents=True, exist_ok=True)
+                        (tmp / rel).write_bytes(data)
+                    shutil.rmtree(out, ignore_errors=True)
+                    tmp.rename(out)
+                on_done(name, rec)
+    finally:
+        if started_here:
+            ray.shutdown()
+
+
+# ---- the batch ----------------------------------------------------------------------------------
+def run_batch(in_dir, out_dir, workers=1, ray_address=None, ray_runtime_env=None, progress=True, **options):
+    """Decompose every mesh under in_dir into out_dir/<name>/; returns the list of summary records
+    (also written to out_dir/summary.csv and summary.json)."""
+    from concurrent.futures import ThreadPoolExecutor, as_completed
+    opts = dict(DEFAULTS)
+    unknown = set(options) - set(opts)
+    if unknown:
+        raise ValueError("unknown batch options: " + ", ".join(sorted(unknown)))
+    opts.update(options)
+    if not opts["tau"] > 0:
+        raise ValueError(f"tau must be positive (got {opts['tau']})")
+    out_root = pathlib.Path(out_dir)
+    out_root.mkdir(parents=True, exist_ok=True)
+    jobs = find_meshes(in_dir)
+    if not jobs:
+        raise ValueError(f"no mesh files under {in_dir} (looked for {', '.join(sorted(MESH_EXTENSIONS))})")
+    records = {}
+    todo = []
+    for src, name in jobs:
+        rec = finished(out_root / name, opts)
+        if rec is not None:
+            records[name] = dict(rec, status="done before")
+        else:
+            todo.append((src, name))
+    source_of = {name: src for src, name in jobs}
+
+    bar = _progress(len(jobs), initial=len(records), enabled=progress)
+
+    def on_done(name, rec):
+        if name is not None:
+            records[name] = rec
+        bar.update(1)
+        bar.set_postfix_str(f"{name}: {rec['status']}" if name else rec["status"])
+        _write_summary(out_root, records, source_of, in_dir)
+
+    try:
+        if ray_address:
+            _run_ray(todo, out_root, opts, ray_address, workers, ray_runtime_env, on_done)
+        else:
+            with ThreadPoolExecutor(max_workers=max(1, workers)) as pool:
+                futs = {pool.submit(run_child, src, out_root / name, opts): name for src, name in todo}
+                for f in as_completed(futs):
+                    on_done(futs[f], f.result())
+    finally:
+        bar.close()
+        _write_summary(out_root, records, source_of, in_dir)
+    return [dict(records[n], file=str(source_of[n])) for _, n in jobs if n in records]
+
+
+def _write_summary(out_root, records, source_of, in_dir):
+    rows = []
+    for name in sorted(records):
+        r = records[name]
+        row = {k: r.get(k, "") for k in SUMMARY_FIELDS}
+        row["file"] = str(pathlib.Path(source_of[name]).relative_to(in_dir))
+        row["output"] = name if r["status"] in ("ok", "done before") else ""
+        rows.append(row)
+    tmp = out_root / "summary.json.tmp"
+    tmp.write_text(json.dumps(rows, indent=1, default=float))
+    tmp.replace(out_root / "summary.json")
+    with open(out_root / "summary.csv.tmp", "w", newline="") as f:
+        w = csv.DictWriter(f, fieldnames=SUMMARY_FIELDS)
+        w.writeheader()
+        for row in rows:
+            w.writerow({k: (f"{v:.6g}" if isinstance(v, float) else v) for k, v in row.items()})
+    (out_root / "summary.csv.tmp").replace(out_root / "summary.csv")
+
+
+def _progress(total, initial, enabled):
+    try:
+        from tqdm import tqdm
+        return tqdm(total=total, initial=initial, unit="mesh", disable=not enabled, dynamic_ncols=True)
+    except ImportError:   # a plain counter on stderr
+        class Bar:
+            n = initial
+
+            def update(self, k):
+                self.n += k
+
+            def set_postfix_str(self, s):
+                if enabled:
+                    print(f"[{self.n}/{total}] {s}", file=sys.stderr)
+
+            def close(self):
+                pass
+        return Bar()
+
+
+def _main_one(argv):
+    src, out, opts = argv[0], argv[1], json.loads(argv[2])
+    try:
+        decompose_file(src, out, opts)
+    except Exception as e:   # one clear line for the batch's record
+        print(f"error: {_reason(e)}", file=sys.stderr)
+        return 1
+    return 0
+
+
+if __name__ == "__main__":
+    if len(sys.argv) > 1 and sys.argv[1] == "--one":
+        sys.exit(_main_one(sys.argv[2:]))
+    sys.exit("usage: python -m pymeshlab_acd batch IN_DIR OUT_DIR (this module's own entry is internal)")

@@ -1,0 +1,150 @@
+"""Physics-ready export of a decomposition: convex collision hulls as OBJ/STL, a URDF (one link, one
+collision element per hull), an MJCF (one body with a free joint, one mesh geom per hull), and a MeshLab
+project (.mlp) with one layer per part.
+
+Mass properties come from the parts (closed shells that partition the solid, so the divergence theorem
+applies), not from the overlapping hulls: simulators would otherwise count the overlaps twice.
+"""
+import pathlib
+import xml.etree.ElementTree as ET
+
+import numpy as np
+import pymeshlab
+
+
+def mass_properties(V, F):
+    """Volume, centre of mass and inertia tensor about the centre (unit density) of a closed,
+    outward-oriented triangle mesh, by summing signed tetrahedra from the origin."""
+    V = np.asarray(V, float)
+    F = np.asarray(F, np.int64)
+    o = V.mean(0)                       # a nearby origin keeps the sums well conditioned
+    a, b, c = V[F[:, 0]] - o, V[F[:, 1]] - o, V[F[:, 2]] - o
+    d = np.einsum("ij,ij->i", a, np.cross(b, c))            # 6 x signed tetra volume
+    vol = d.sum() / 6.0
+    if not vol > 0:
+        raise ValueError("mesh encloses no positive volume (open or inward-facing?)")
+    com = (d[:, None] * (a + b + c)).sum(0) / 24.0 / vol
+    # Second moments: for a tetra (0,a,b,c), int x_i x_j = det/120 * (sum_k p_k,i p_k,j + s_i s_j), s = a+b+c.
+    s = a + b + c
+    M = (np.einsum("n,ni,nj->ij", d, a, a) + np.einsum("n,ni,nj->ij", d, b, b)
+         + np.einsum("n,ni,nj->ij", d, c, c) + np.einsum("n,ni,nj->ij", d, s, s)) / 120.0
+    M -= vol * np.outer(com, com)      # move the second moments to the centre of mass
+    inertia = np.trace(M) * np.eye(3) - M
+    return vol, com + o, inertia
+
+
+def merged_layers(ms, ids):
+    """The layers' triangles as one mesh (disjoint closed shells add up in mass_properties)."""
+    Vs, Fs, n = [], [], 0
+    for i in ids:
+        m = ms.mesh(i)
+        Vs.append(m.vertex_matrix())
+        Fs.append(m.face_matrix() + n)
+        n += len(Vs[-1])
+    return np.concatenate(Vs), np.concatenate(Fs)
+
+
+def _save(ms, layer_id, path, **kw):
+    ms.set_current_mesh(layer_id)
+    ms.save_current_mesh(str(path), **kw)
+
+
+def export_decomposition(ms, source_id, part_ids, hull_ids, out_dir, name="object", formats=("obj", "stl"),
+                         scale=1.0, density=1000.0, urdf=True, mjcf=True, mlp=True, visual=True):
+    """Write the decomposition held in `ms` to `out_dir`.
+
+    source_id: the input layer; part_ids / hull_ids: the parts' and their hulls' layers (hull_ids may be
+    empty: then the parts are the collision meshes, and simulators take their hulls). `scale` maps
+    model units to metres; `density` is in kg/m^3. Returns {kind: [relative paths]}.
+    """
+    out = pathlib.Path(out_dir)
+    (out / "collision").mkdir(parents=True, exist_ok=True)
+    written = {"collision": [], "parts": [], "visual": [], "urdf": [], "mjcf": [], "mlp": []}
+    colliders = hull_ids or part_ids
+    for i in colliders:
+        label = ms.mesh(i).label()
+        for ext in formats:
+            rel = f"collision/{label}.{ext}"
+            _save(ms, i, out / rel, **({"save_vertex_color": False} if ext == "obj" else {}))
+            written["collision"].append(rel)
+    mesh_ext = "obj" if "obj" in formats else formats[0]
+    coll = [f"collision/{ms.mesh(i).label()}.{mesh_ext}" for i in colliders]
+    if visual:
+        _save(ms, source_id, out / f"visual.{mesh_ext}", **({"save_vertex_color": False} if mesh_ext == "obj" else {}))
+        written["visual"].append(f"visual.{mesh_ext}")
+    V, F = merged_layers(ms, part_ids)
+    vol, com, inertia = mass_properties(V * scale, F)
+    mass = density * vol
+    inertia = density * inertia
+    if urdf:
+        (out / f"{name}.urdf").write_text(_urdf(name, coll, written["visual"], mass, com, inertia, scale))
+        written["urdf"].append(f"{name}.urdf")
+    if mjcf:
+        (out / f"{name}.xml").write_text(_mjcf(name, coll, written["visual"], mass, com, inertia, scale))
+        written["mjcf"].append(f"{name}.xml")
+    if mlp:
+        written["parts"], written["mlp"] = _mlp(ms, part_ids, out, name), [f"{name}.mlp"]
+    return written
+
+
+def _fmt(*xs):
+    return " ".join(f"{x:.9g}" for x in xs)
+
+
+def _urdf(name, coll, visual, mass, com, I, scale):
+    robot = ET.Element("robot", name=name)
+    link = ET.SubElement(robot, "link", name=f"{name}_link")
+    inertial = ET.SubElement(link, "inertial")
+    ET.SubElement(inertial, "origin", xyz=_fmt(*com), rpy="0 0 0")
+    ET.SubElement(inertial, "mass", value=_fmt(mass))
+    ET.SubElement(inertial, "inertia", ixx=_fmt(I[0, 0]), ixy=_fmt(I[0, 1]), ixz=_fmt(I[0, 2]),
+                  iyy=_fmt(I[1, 1]), iyz=_fmt(I[1, 2]), izz=_fmt(I[2, 2]))
+    for f in visual:
+        v = ET.SubElement(link, "visual")
+        ET.SubElement(ET.SubElement(v, "geometry"), "mesh", filename=f, scale=_fmt(scale, scale, scale))
+    for k, f in enumerate(coll):
+        c = ET.SubElement(link, "collision", name=f"{name}_hull_{k}")
+        ET.SubElement(ET.SubElement(c, "geometry"), "mesh", filename=f, scale=_fmt(scale, scale, scale))
+    ET.indent(robot)
+    return '<?xml version="1.0"?>\n' + ET.tostring(robot, encoding="unicode") + "\n"
+
+
+def _mjcf(name, coll, visual, mass, com, I, scale):
+    root = ET.Element("mujoco", model=name)
+    # The body's explicit <inertial> wins over its geoms ("auto"), so the overlapping hulls' volumes do
+    # not add up to a wrong mass; bodies a user adds without one still get theirs from their geoms.
+    ET.SubElement(root, "compiler", meshdir=".", inertiafromgeom="auto")
+    asset = ET.SubElement(root, "asset")
+    for k, f in enumerate(coll):
+        ET.SubElement(asset, "mesh", name=f"{name}_hull_{k}", file=f, scale=_fmt(scale, scale, scale))
+    for f in visual:
+        ET.SubElement(asset, "mesh", name=f"{name}_visual", file=f, scale=_fmt(scale, scale, scale))
+    world = ET.SubElement(root, "worldbody")
+    body = ET.SubElement(world, "body", name=name)
+    ET.SubElement(body, "freejoint", name=f"{name}_free")
+    ET.SubElement(body, "inertial", pos=_fmt(*com), mass=_fmt(mass),
+                  fullinertia=_fmt(I[0, 0], I[1, 1], I[2, 2], I[0, 1], I[0, 2], I[1, 2]))
+    for k in range(len(coll)):
+        ET.SubElement(body, "geom", name=f"{name}_hull_{k}", type="mesh", mesh=f"{name}_hull_{k}", group="3")
+    if visual:
+        # Drawn, never collides.
+        ET.SubElement(body, "geom", name=f"{name}_visual", type="mesh", mesh=f"{name}_visual",
+                      contype="0", conaffinity="0", group="1")
+    ET.indent(root)
+    return ET.tostring(root, encoding="unicode") + "\n"
+
+
+def _mlp(ms, part_ids, out, name):
+    """A MeshLab project with one layer per part (coloured PLY), written by MeshLab's own project
+    writer from a MeshSet that holds only the parts."""
+    (out / "parts").mkdir(parents=True, exist_ok=True)
+    proj = pymeshlab.MeshSet()
+    rels = []
+    for i in part_ids:
+        m = ms.mesh(i)
+        proj.add_mesh(m, m.label())
+        rel = f"parts/{m.label()}.ply"
+        proj.save_current_mesh(str(out / rel), save_vertex_color=True)
+        rels.append(rel)
+    proj.save_project(str(out / f"{name}.mlp"))   # MeshLab stores the layers' paths relative to it
+    return rels
