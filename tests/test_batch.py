@@ -66,7 +66,7 @@ def check_outputs(in_dir, out_dir, rows, shapes):
             assert total == pytest.approx(volume(V, F), rel=1e-6), name
             assert r["preprocessing"] == "none"
         else:                           # wrapped first: close to the box, slightly larger
-            assert r["preprocessing"] == "alpha_wrap" and "duplicate" in r["error"]
+            assert r["preprocessing"] == "alpha_wrap 1%" and "duplicate" in r["error"]
             assert 8 < total < 1.2 * 8          # the 2 x 2 x 2 box, and the wrap's small offset
 
 

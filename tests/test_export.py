@@ -7,7 +7,6 @@ trough lands inside the channel with the decomposition, and on top of the rim wi
 import json
 import subprocess
 import sys
-import xml.etree.ElementTree as ET
 
 import numpy as np
 import pymeshlab
@@ -16,6 +15,7 @@ import pytest
 import pymeshlab_acd
 from pymeshlab_acd.export import export_decomposition, mass_properties
 from conftest import BUNNY, U_SHAPE, add_mesh, extrude, is_closed_manifold, volume
+from simulators import drop_mujoco, drop_pybullet, hull_vertices
 
 mujoco = pytest.importorskip("mujoco")
 pybullet = pytest.importorskip("pybullet")
@@ -62,19 +62,6 @@ def bunny_export(tmp_path_factory):
     return out / "export", json.loads((out / "summary.json").read_text())
 
 
-def hull_vertices(export_dir, link_xml):
-    """World-independent collision vertices, read back from the OBJ files the model file names."""
-    root = ET.parse(link_xml).getroot()
-    files = [m.get("filename") or m.get("file") for m in root.iter("mesh")]
-    files = [f for f in files if f.startswith("collision/")]
-    out = []
-    for f in files:
-        ms = pymeshlab.MeshSet()
-        ms.load_new_mesh(str(export_dir / f))
-        out.append(ms.current_mesh().vertex_matrix())
-    return files, out
-
-
 def test_export_files(bunny_export):
     d, summary = bunny_export
     parts = summary["parts"]
@@ -114,6 +101,26 @@ def test_pybullet_loads_and_drops_the_bunny(bunny_export):
     assert z["moved"] > 0.1
     assert abs(z["lowest"]) < 0.01 * z["size"]
     assert z["speed"] < 1e-2
+
+
+def test_mujoco_loads_an_open_mesh_as_the_visual(tmp_path):
+    """An open input (wrapped to decompose it) stays the visual mesh; MuJoCo cannot weigh an open
+    mesh, and need not: the body's inertia is explicit."""
+    from conftest import icosphere
+    pymeshlab_acd.load()
+    V, F = icosphere(level=4)
+    ms = pymeshlab.MeshSet()
+    add_mesh(ms, V, F[1:], "open_sphere")            # one face missing
+    src = ms.current_mesh_id()
+    res, ids = pymeshlab_acd.decompose(ms, tau=5, preprocessing="alpha_wrap", wrap_alpha=10, output_hulls=True)
+    hulls = [i for i in ids if ms.mesh(i).label().startswith("acd_hull_")]
+    export_decomposition(ms, src, [i for i in ids if i not in hulls], hulls, tmp_path, name="open_sphere")
+    model = mujoco.MjModel.from_xml_path(str(tmp_path / "open_sphere.xml"))
+    assert model.nmesh == len(hulls) + 1
+    assert model.body_mass[1] == pytest.approx(1000 * 4 / 3 * np.pi, rel=0.05)   # the wrapped unit ball
+    _, hv = hull_vertices(tmp_path, tmp_path / "open_sphere.xml")
+    z = drop_mujoco(tmp_path / "open_sphere.xml", tmp_path / "scene.xml", "open_sphere", hv, height=0.5)
+    assert abs(z["lowest"]) < 0.01 * z["size"] and z["moved"] > 0.4
 
 
 # ---- a ball into a trough: the parts, not one hull, collide --------------------------------------
@@ -178,75 +185,3 @@ def test_meshlab_project_has_one_layer_per_part(bunny_export):
     ref.load_new_mesh(BUNNY)
     assert total == pytest.approx(volume(ref.current_mesh().vertex_matrix(), ref.current_mesh().face_matrix()),
                                   rel=1e-6)
-
-
-# ---- simulators ----------------------------------------------------------------------------------
-def _lowest(hulls, R, t, com):
-    return min(float(((h - com) @ R.T + t)[:, 2].min()) for h in hulls)
-
-
-def drop_mujoco(model_file, scene_file, body, hulls, height, ball=None, seconds=6.0):
-    """Add a floor (and optionally a ball), lift the body so its lowest point is `height` above the
-    floor, simulate, and report where things rest."""
-    root = ET.parse(model_file).getroot()
-    world = root.find("worldbody")
-    ET.SubElement(world, "geom", name="floor", type="plane", size="20 20 0.1")
-    b = world.find(f"body[@name='{body}']")
-    lo = min(float(h[:, 2].min()) for h in hulls)
-    b.set("pos", f"0 0 {height - lo}")
-    if ball:
-        bb = ET.SubElement(world, "body", name="ball", pos=" ".join(map(str, ball[:3])))
-        ET.SubElement(bb, "freejoint")
-        ET.SubElement(bb, "geom", type="sphere", size=str(ball[3]), density="500")
-    scene_file.write_text(ET.tostring(root, encoding="unicode"))
-    m = mujoco.MjModel.from_xml_path(str(scene_file))
-    d = mujoco.MjData(m)
-    mujoco.mj_forward(m, d)
-    start = d.xpos[m.body(body).id].copy()
-    for _ in range(int(seconds / m.opt.timestep)):
-        mujoco.mj_step(m, d)
-    bid = m.body(body).id
-    R = d.xmat[bid].reshape(3, 3)
-    # xpos is the body frame (the mesh's own coordinates), so the hull vertices map without the centre.
-    lowest = _lowest(hulls, R, d.xpos[bid], np.zeros(3))
-    geoms = {m.geom(g).name for g in range(m.ngeom)}
-    on_hulls = sum(1 for c in d.contact[:d.ncon]
-                   if {m.geom(c.geom1).name, m.geom(c.geom2).name} & {g for g in geoms if "_hull_" in g})
-    size = float(np.linalg.norm(np.ptp(np.concatenate(hulls), 0)))
-    out = dict(lowest=lowest, moved=float(start[2] - d.xpos[bid][2]) if height else 0.0,
-               speed=float(np.abs(d.qvel[:6]).max()), size=size, contacts_on_hulls=on_hulls)
-    if ball:
-        out["ball_z"] = float(d.xpos[m.body("ball").id][2])
-    return out
-
-
-def drop_pybullet(urdf, hulls, height, ball=None, seconds=6.0):
-    p = pybullet
-    cid = p.connect(p.DIRECT)
-    try:
-        p.setGravity(0, 0, -9.81, physicsClientId=cid)
-        p.createMultiBody(0, p.createCollisionShape(p.GEOM_PLANE, physicsClientId=cid), physicsClientId=cid)
-        lo = min(float(h[:, 2].min()) for h in hulls)
-        body = p.loadURDF(str(urdf), basePosition=[0, 0, height - lo],   # the link frame, lifted
-                          flags=p.URDF_USE_INERTIA_FROM_FILE, physicsClientId=cid)
-        shapes = len(p.getCollisionShapeData(body, -1, physicsClientId=cid))
-        start = p.getBasePositionAndOrientation(body, physicsClientId=cid)[0][2]
-        if ball:
-            s = p.createMultiBody(0.3, p.createCollisionShape(p.GEOM_SPHERE, radius=ball[3], physicsClientId=cid),
-                                  basePosition=ball[:3], physicsClientId=cid)
-        for _ in range(int(seconds * 240)):
-            p.stepSimulation(physicsClientId=cid)
-        pos, orn = p.getBasePositionAndOrientation(body, physicsClientId=cid)
-        # The base pose is the inertial frame's, which PyBullet turns to the principal axes: back to the link's.
-        local = p.getDynamicsInfo(body, -1, physicsClientId=cid)[3:5]
-        lpos, lorn = p.multiplyTransforms(pos, orn, *p.invertTransform(*local))
-        R = np.array(p.getMatrixFromQuaternion(lorn)).reshape(3, 3)
-        lin, ang = p.getBaseVelocity(body, physicsClientId=cid)
-        out = dict(lowest=_lowest(hulls, R, np.array(lpos), np.zeros(3)), moved=start - pos[2], shapes=shapes,
-                   speed=float(max(np.abs(lin).max(), np.abs(ang).max())),
-                   size=float(np.linalg.norm(np.ptp(np.concatenate(hulls), 0))))
-        if ball:
-            out["ball_z"] = p.getBasePositionAndOrientation(s, physicsClientId=cid)[0][2]
-        return out
-    finally:
-        p.disconnect(cid)

@@ -96,6 +96,10 @@ def cmd_decompose(a):
     return 0
 
 
+def _short(text, n=90):
+    return text if len(text) <= n else text[:n - 3] + "..."
+
+
 def cmd_batch(a):
     from .batch import run_batch
     fmt = [f.strip() for f in a.formats.split(",") if f.strip()]
@@ -107,13 +111,14 @@ def cmd_batch(a):
                         wrap_alpha=a.wrap_alpha, wrap_offset=a.wrap_offset,
                         time_limit=a.time_limit, timeout=a.timeout, formats=fmt, scale=a.scale, density=a.density)
     w = max([len(pathlib.Path(r["file"]).name) for r in records] + [4])
-    print(f"{'file':<{w}}  {'status':<11} {'parts':>5} {'concavity %':>11} {'hulls/vol':>9} {'time s':>7}  note")
+    print(f"{'file':<{w}}  {'status':<11} {'parts':>5} {'concavity %':>11} {'hulls/vol':>9} {'time s':>7}  "
+          f"{'preprocessing':<15} note")
     for r in records:
         ok = r["status"] in ("ok", "done before")
         print(f"{pathlib.Path(r['file']).name:<{w}}  {r['status']:<11} "
               + (f"{r['parts']:>5} {r['max_concavity_pct']:>11.3f} {r['hull_volume_ratio']:>9.3f} "
                  if ok else f"{'-':>5} {'-':>11} {'-':>9} ")
-              + f"{r.get('time', 0):>7.1f}  {r.get('error') or ''}")
+              + f"{r.get('time', 0):>7.1f}  {r.get('preprocessing') or '-':<15} {_short(r.get('error') or '')}")
     failed = sum(r["status"] == "failed" for r in records)
     print(f"{len(records)} meshes, {len(records) - failed} decomposed, {failed} failed; "
           f"summary: {pathlib.Path(a.out_dir) / 'summary.csv'} and summary.json")

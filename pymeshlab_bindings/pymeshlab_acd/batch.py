@@ -28,6 +28,8 @@ DEFAULTS = dict(tau=3.0, tau_unit="percent_of_size", cut_plane_selection="best",
 _OUTPUT_KEYS = ("tau", "tau_unit", "cut_plane_selection", "max_parts", "max_hull_vertices", "preprocessing",
                 "wrap_alpha", "wrap_offset", "time_limit", "formats", "scale", "density")
 
+HOLLOW_RATIO = 1.5   # hull volume / solid volume above which a wrap is taken to be hollow
+
 SUMMARY_FIELDS = ("file", "status", "parts", "max_concavity", "max_concavity_pct", "hull_volume_ratio",
                   "preprocessing", "faces", "time", "worker", "error", "output")
 
@@ -62,36 +64,45 @@ def decompose_file(src, out_dir, opts):
 
     load()
     t0 = time.perf_counter()
-    ms = pymeshlab.MeshSet()
-    ms.load_new_mesh(str(src))
-    source = ms.current_mesh_id()
     params = dict(tau=opts["tau"], tau_unit=opts["tau_unit"], cut_plane_selection=opts["cut_plane_selection"],
                   max_parts=opts["max_parts"], output_hulls=True, max_hull_vertices=opts["max_hull_vertices"],
-                  time_limit=opts["time_limit"], wrap_alpha=opts["wrap_alpha"], wrap_offset=opts["wrap_offset"])
+                  time_limit=opts["time_limit"], wrap_offset=opts["wrap_offset"])
+
+    def attempt(preprocessing, alpha):
+        ms = pymeshlab.MeshSet()
+        ms.load_new_mesh(str(src))
+        source = ms.current_mesh_id()
+        res, ids = decompose(ms, preprocessing=preprocessing, wrap_alpha=alpha, **params)
+        hulls = [i for i in ids if ms.mesh(i).label().startswith("acd_hull_")]
+        parts = [i for i in ids if i not in hulls]
+        vol = mass_properties(*merged_layers(ms, parts))[0]      # the solid decomposed (the wrap, if wrapped)
+        hull_vol = sum(mass_properties(ms.mesh(i).vertex_matrix(), ms.mesh(i).face_matrix())[0] for i in hulls)
+        return dict(ms=ms, source=source, res=res, parts=parts, hulls=hulls, ratio=hull_vol / vol, alpha=alpha)
+
     pre, note = opts["preprocessing"], ""
-    try:
-        res, ids = decompose(ms, preprocessing="none" if pre == "auto" else pre, **params)
-        pre = "none" if pre == "auto" else pre
-    except pymeshlab.PyMeshLabException as e:
-        if pre != "auto":
-            raise
-        # Open, non-manifold or otherwise unusable as given: wrap it into a closed solid and go on.
-        note = f"alpha-wrapped: as given, {_reason(e)}"
-        ms.set_current_mesh(source)
-        res, ids = decompose(ms, preprocessing="alpha_wrap", **params)
-        pre = "alpha_wrap"
-    labels = {i: ms.mesh(i).label() for i in ids}
-    hulls = [i for i in ids if labels[i].startswith("acd_hull_")]
-    parts = [i for i in ids if i not in hulls and labels[i].startswith("acd_")]
+    if pre != "auto":
+        a = attempt(pre, opts["wrap_alpha"])
+    else:
+        try:
+            a, pre = attempt("none", opts["wrap_alpha"]), "none"
+        except pymeshlab.PyMeshLabException as e:
+            # Open, non-manifold or otherwise unusable as given: wrap it into a closed solid. A wrap that
+            # slipped through the mesh's holes is a hollow shell, whose hulls hold far more than its
+            # volume: wrap again with a doubled alpha (up to 16% of size) and keep the least hollow.
+            tries = [attempt("alpha_wrap", opts["wrap_alpha"])]
+            while tries[-1]["ratio"] > HOLLOW_RATIO and tries[-1]["alpha"] * 2 <= 16.0:
+                tries.append(attempt("alpha_wrap", tries[-1]["alpha"] * 2))
+            a = min(tries, key=lambda t: t["ratio"])
+            pre = f"alpha_wrap {a['alpha']:g}%"
+            note = f"wrapped: as given, {_reason(e)}"
+    ms, source, res, parts, hulls = a["ms"], a["source"], a["res"], a["parts"], a["hulls"]
     written = export_decomposition(ms, source, parts, hulls, out_dir, name=pathlib.Path(src).stem,
                                    formats=tuple(opts["formats"]), scale=opts["scale"], density=opts["density"])
-    vol = mass_properties(*merged_layers(ms, parts))[0]      # the solid decomposed (the wrap, if wrapped)
-    hull_vol = sum(mass_properties(ms.mesh(i).vertex_matrix(), ms.mesh(i).face_matrix())[0] for i in hulls)
     m = ms.mesh(source)
     diag = float(np.linalg.norm(m.bounding_box().max() - m.bounding_box().min()))
     rec = dict(status="ok", parts=res["parts"], max_concavity=res["max_concavity"],
                max_concavity_pct=100.0 * res["max_concavity"] / diag if diag > 0 else 0.0,
-               hull_volume_ratio=hull_vol / vol, preprocessing=pre, faces=ms.mesh(source).face_number(),
+               hull_volume_ratio=a["ratio"], preprocessing=pre, faces=ms.mesh(source).face_number(),
                time=time.perf_counter() - t0, error=note, files=written, options_key=options_key(opts),
                worker=f"{socket.gethostname()}:{os.getpid()}", max_parts_reached=res["max_parts_reached"],
                time_limit_reached=res.get("time_limit_reached", False))

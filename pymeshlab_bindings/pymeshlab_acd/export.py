@@ -118,7 +118,8 @@ def _mjcf(name, coll, visual, mass, com, I, scale):
     for k, f in enumerate(coll):
         ET.SubElement(asset, "mesh", name=f"{name}_hull_{k}", file=f, scale=_fmt(scale, scale, scale))
     for f in visual:
-        ET.SubElement(asset, "mesh", name=f"{name}_visual", file=f, scale=_fmt(scale, scale, scale))
+        # Never weighed (the body's inertial is explicit), and may be open: MuJoCo must not need its volume.
+        ET.SubElement(asset, "mesh", name=f"{name}_visual", file=f, scale=_fmt(scale, scale, scale), inertia="shell")
     world = ET.SubElement(root, "worldbody")
     body = ET.SubElement(world, "body", name=name)
     ET.SubElement(body, "freejoint", name=f"{name}_free")
