@@ -182,15 +182,21 @@ def _run_ray(todo, out_root, opts, address, workers, runtime_env, on_done):
         ray.init(address=address, **init)
     try:
         task = ray.remote(num_cpus=1, max_retries=0)(_ray_task)
-        pending = [task.remote(name, src.read_bytes(), src.name, opts) for src, name in todo]
-        while pending:
+        # A window of tasks in flight, so thousands of meshes are not all in the object store at once.
+        window = 2 * max(1, int(ray.cluster_resources().get("CPU", workers)))
+        queue, names, pending = list(todo), {}, []
+        while queue or pending:
+            while queue and len(pending) < window:
+                src, name = queue.pop(0)
+                ref = task.remote(name, src.read_bytes(), src.name, opts)
+                names[ref] = name
+                pending.append(ref)
             done, pending = ray.wait(pending, num_returns=1)
             for ref in done:
                 try:
                     name, rec, files = ray.get(ref)
-                except Exception as e:   # the worker itself died: record, go on
-                    on_done(None, dict(status="failed", error=f"Ray task failed: {e}".splitlines()[0]))
-                    continue
+                except Exception as e:   # the Ray worker itself died: record it, go on
+                    name, rec, files = names[ref], dict(status="failed", error=f"Ray task failed: {e}".splitlines()[0]), {}
                 if rec["status"] == "ok":
                     out = out_root / name
                     tmp = out.with_name(out.name + ".partial")
@@ -236,10 +242,9 @@ def run_batch(in_dir, out_dir, workers=1, ray_address=None, ray_runtime_env=None
     bar = _progress(len(jobs), initial=len(records), enabled=progress)
 
     def on_done(name, rec):
-        if name is not None:
-            records[name] = rec
+        records[name] = rec
         bar.update(1)
-        bar.set_postfix_str(f"{name}: {rec['status']}" if name else rec["status"])
+        bar.set_postfix_str(f"{name}: {rec['status']}")
         _write_summary(out_root, records, source_of, in_dir)
 
     try:
