@@ -164,10 +164,11 @@ QString FilterACD::filterInfo(ActionIDType f) const
 		               "can be added too.") + kCitation;
 	case SKELETON:
 		return QString("Decomposes the mesh (same parameters as the decomposition) and extracts a skeleton from "
-		               "the parts (the paper's Section 7): each part's principal axis through its centroid, "
-		               "clipped to the part; a part whose axis leaves it or runs off-centre is split further "
-		               "across its axis; the skeletons of the two sides of each cut are joined through the "
-		               "centre of the cut's cross-section. Output: an edge-mesh layer coloured by part.") +
+		               "its tree, top down (the paper's Section 7): a node's skeleton is the principal axis of "
+		               "its convex hull, clipped to the node's solid; where that axis leaves the solid or runs "
+		               "off-centre, the node's cut splits it (a leaf is split across its axis), and the two "
+		               "sides' skeletons are joined through the centre of each cross-section of the cut. "
+		               "Output: an edge-mesh layer coloured by piece.") +
 		       kCitation;
 	case HULL_UNION:
 		return QString("Decomposes the mesh and simplifies it by the union of its parts' convex hulls (the "
@@ -323,8 +324,8 @@ RichParameterList FilterACD::initParameterList(const QAction* a, const MeshModel
 		                   "A part whose axis leaves it or runs off-centre is split across its axis, at most "
 		                   "this many times over (0 = never)."));
 		p.addParam(RichFloat("off_centre", 0.25, "Skeleton: off-centre limit",
-		                     "Refine a part when the middle of its axis chord is farther than this fraction of "
-		                     "the chord's length from the part's centroid."));
+		                     "Split a piece when the middle of its axis chord is farther than this fraction of "
+		                     "the chord's length from its hull's centroid."));
 		return p;
 	}
 	if (ID(a) == HULL_UNION) {

@@ -1,7 +1,12 @@
 #include "acd/skeleton.h"
 
+#include "acd/hull.h"
+
+#include <Eigen/Eigenvalues>
+
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <numeric>
 
 namespace acd {
@@ -48,6 +53,19 @@ std::vector<double> crossings(const TriMesh& m, const Vec3& c, const Vec3& a)
 	return out;
 }
 
+// Major principal axis of a closed surface's area about c.
+Vec3 principal_axis(const TriMesh& m, const Vec3& c)
+{
+	Eigen::Matrix3d M = Eigen::Matrix3d::Zero();
+	for (const Tri& t : m.F) {
+		const Vec3   a = m.V[t[0]] - c, b = m.V[t[1]] - c, d = m.V[t[2]] - c, s = a + b + d;
+		const double area = 0.5 * (b - a).cross(d - a).norm();
+		M += area / 12 * (a * a.transpose() + b * b.transpose() + d * d.transpose() + s * s.transpose());
+	}
+	Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es(M);   // ascending
+	return es.eigenvectors().col(2);
+}
+
 struct Piece
 {
 	TriMesh mesh;
@@ -64,63 +82,102 @@ struct Builder
 	std::vector<Piece>     pieces;
 	Skeleton               S;
 
-	// The chord of the axis through the centroid; whether the piece must be refined.
+	// The principal axis of the piece's convex hull through the hull's centroid (the paper's: the
+	// hull ignores surface noise), clipped to the piece. The piece needs splitting when that axis,
+	// across the hull, leaves the piece (so the chord would not span it) or runs off-centre. In- and
+	// outside stretches shorter than tau are the surface's small features, not the shape's.
 	bool chord(Piece& p)
 	{
-		p.c = centroid(p.mesh);
-		p.a = pose_frame(p.mesh).axes.row(0).transpose();
-		const std::vector<double> ts = crossings(p.mesh, p.c, p.a);
-		// inside intervals are consecutive pairs; take the one holding the centroid, else the nearest
-		int best = -1;
-		double gap = HUGE_VAL;
+		const TriMesh hull = ConvexHull(p.mesh.V).mesh();
+		p.c = centroid(hull);
+		p.a = principal_axis(hull, p.c);
+		const std::vector<double> across = crossings(hull, p.c, p.a);
+		const std::vector<double> ts     = crossings(p.mesh, p.c, p.a);
+		std::vector<std::array<double, 2>> in;   // inside intervals, small gaps closed, slivers dropped
 		for (size_t i = 0; i + 1 < ts.size(); i += 2) {
-			const double d = ts[i] > 0 ? ts[i] : ts[i + 1] < 0 ? -ts[i + 1] : 0;
-			if (d < gap) gap = d, best = (int) i;
+			if (!in.empty() && ts[i] - in.back()[1] < 0.1 * D.tau) in.back()[1] = ts[i + 1];
+			else in.push_back({ts[i], ts[i + 1]});
 		}
-		if (best < 0) {   // no crossing found (degenerate): a point
+		if (in.size() > 1)
+			in.erase(std::remove_if(in.begin(), in.end(), [&](const auto& r) { return r[1] - r[0] < D.tau; }), in.end());
+		// the interval holding the centroid, else the nearest
+		int    best = -1;
+		double gap  = HUGE_VAL;
+		for (int i = 0; i < (int) in.size(); ++i) {
+			const double d = in[i][0] > 0 ? in[i][0] : in[i][1] < 0 ? -in[i][1] : 0;
+			if (d < gap) gap = d, best = i;
+		}
+		if (best < 0 || across.size() < 2) {   // no crossing found (degenerate): a point
 			p.lo = p.hi = p.mid = 0;
 			return false;
 		}
-		p.lo  = ts[best];
-		p.hi  = ts[best + 1];
+		p.lo  = in[best][0];
+		p.hi  = in[best][1];
 		p.mid = gap > 0 ? (p.lo + p.hi) / 2 : 0;
-		const bool leaves    = ts.size() > 2;   // the axis leaves the piece and comes back
-		const bool off       = std::abs((p.lo + p.hi) / 2) > opt.off_centre * (p.hi - p.lo);
+		const bool leaves = p.hi - p.lo < opt.min_cover * (across.back() - across.front());
+		const bool off    = std::abs((p.lo + p.hi) / 2) > opt.off_centre * (p.hi - p.lo);
 		return leaves || off || gap > 0;
 	}
 
-	// A cut between the pieces `A` and `B` (plane `pl`): join them through its cross-section's centre.
+	struct CapFace
+	{
+		int    piece;
+		Vec3   centroid;
+		double area;
+		int    corner[3];   // welded corner ids (equal positions, across pieces)
+	};
+
+	// Faces of the pieces lying on plane `pl` (the caps of that cut), corners welded by position.
+	std::vector<CapFace> caps(const Plane& pl, const std::vector<int>& side, std::map<std::array<double, 3>, int>& weld)
+	{
+		std::vector<CapFace> out;
+		for (int i : side)
+			for (const Tri& t : pieces[i].mesh.F) {
+				const Vec3 &p = pieces[i].mesh.V[t[0]], &q = pieces[i].mesh.V[t[1]], &r = pieces[i].mesh.V[t[2]];
+				if (std::abs(pl.eval(p)) > eps || std::abs(pl.eval(q)) > eps || std::abs(pl.eval(r)) > eps) continue;
+				CapFace f{i, (p + q + r) / 3, 0.5 * (q - p).cross(r - p).norm(), {}};
+				for (int k = 0; k < 3; ++k) {
+					const Vec3& x = pieces[i].mesh.V[t[k]];
+					f.corner[k]   = weld.emplace(std::array<double, 3>{x.x(), x.y(), x.z()}, (int) weld.size()).first->second;
+				}
+				out.push_back(f);
+			}
+		return out;
+	}
+
+	// A cut between the pieces `A` and `B` (plane `pl`): join them through the centre of each
+	// connected cross-section (a cut through a ring meets it twice: two joints, so the loop closes).
 	void joint(const Plane& pl, const std::vector<int>& A, const std::vector<int>& B)
 	{
-		auto cap = [&](const std::vector<int>& side, Vec3& centre) {
-			double area = 0;
-			centre      = Vec3::Zero();
-			for (int i : side)
-				for (const Tri& t : pieces[i].mesh.F) {
-					const Vec3 &p = pieces[i].mesh.V[t[0]], &q = pieces[i].mesh.V[t[1]], &r = pieces[i].mesh.V[t[2]];
-					if (std::abs(pl.eval(p)) > eps || std::abs(pl.eval(q)) > eps || std::abs(pl.eval(r)) > eps) continue;
-					const double w = 0.5 * (q - p).cross(r - p).norm();
-					area += w;
-					centre += w * (p + q + r) / 3;
-				}
-			if (area > 0) centre /= area;
-			return area;
+		std::map<std::array<double, 3>, int> weld;
+		const std::vector<CapFace> a = caps(pl, A, weld), b = caps(pl, B, weld);
+		if (a.empty()) return;
+		// connected components of A's cap faces through shared corners
+		std::vector<int> parent(weld.size());
+		std::iota(parent.begin(), parent.end(), 0);
+		auto root = [&](int x) {
+			while (parent[x] != x) x = parent[x] = parent[parent[x]];
+			return x;
 		};
-		Vec3 q;
-		if (!(cap(A, q) > 0)) return;
-		const int jq = add_vertex(q, -1);
-		for (const std::vector<int>* side : {&A, &B}) {
-			// the piece of this side whose cap faces lie nearest to the centre
-			int    pick = -1;
-			double dmin = HUGE_VAL;
-			for (int i : *side) {
-				Vec3 ci;
-				if (!(cap({i}, ci) > 0)) continue;
-				const double d = (ci - q).norm();
-				if (d < dmin) dmin = d, pick = i;
+		for (const CapFace& f : a) parent[root(f.corner[0])] = parent[root(f.corner[2])] = root(f.corner[1]);
+		std::map<int, std::pair<Vec3, double>> section;   // root -> (area-weighted centroid sum, area)
+		for (const CapFace& f : a) {
+			auto& [c, w] = section.try_emplace(root(f.corner[0]), Vec3::Zero(), 0.0).first->second;
+			c += f.area * f.centroid, w += f.area;
+		}
+		for (const auto& [r, cw] : section) {
+			if (!(cw.second > 0)) continue;
+			const Vec3 q  = cw.first / cw.second;
+			const int  jq = add_vertex(q, -1);
+			for (const std::vector<CapFace>* side : {&a, &b}) {
+				// the piece of this side holding the cap face nearest to the section's centre
+				int    pick = -1;
+				double dmin = HUGE_VAL;
+				for (const CapFace& f : *side)
+					if ((side == &b || root(f.corner[0]) == r) && (f.centroid - q).norm() < dmin)
+						dmin = (f.centroid - q).norm(), pick = f.piece;
+				if (pick >= 0) pieces[pick].joints.push_back(jq);
 			}
-			// joined to the piece's centre: both lie in the (nearly convex) piece, so does the edge
-			if (pick >= 0) pieces[pick].joints.push_back(jq);
 		}
 	}
 
@@ -153,10 +210,18 @@ struct Builder
 		return {(int) pieces.size() - 1};
 	}
 
+	// Top down (the paper's Figure 14): a node whose hull axis is good is one piece, however coarse;
+	// otherwise its cut splits it, and a leaf that is still not good is split across its axis.
 	std::vector<int> build(int id)
 	{
 		const Node& n = D.nodes[id];
 		if (n.leaf()) return refine(n.mesh, 0);
+		Piece p;
+		p.mesh = n.mesh;
+		if (!chord(p)) {
+			pieces.push_back(std::move(p));
+			return {(int) pieces.size() - 1};
+		}
 		std::vector<int> a = build(n.child[0]), b = build(n.child[1]);
 		if (n.has_plane) joint(n.plane, a, b);
 		a.insert(a.end(), b.begin(), b.end());
@@ -184,15 +249,23 @@ Skeleton skeleton(const Decomposition& D, const SkeletonOptions& opt)
 {
 	Builder b{D, opt, 1e-9 * extent(D.nodes[0].mesh.V), {}, {}};
 	b.build(0);
-	// Each piece: its axis chord through its centre, and edges from the centre to its joints.
+	// Each piece: its axis chord, and an edge from each joint to the chord's nearest point (a coarse
+	// piece is not convex: its centre may not see the joint, its axis runs nearer).
 	for (int i = 0; i < (int) b.pieces.size(); ++i) {
-		const Piece& p   = b.pieces[i];
-		const int    lo  = b.add_vertex(p.c + p.lo * p.a, i);
-		const int    mid = b.add_vertex(p.c + p.mid * p.a, i);
-		const int    hi  = b.add_vertex(p.c + p.hi * p.a, i);
-		b.S.E.push_back({lo, mid});
-		b.S.E.push_back({mid, hi});
-		for (int j : p.joints) b.S.E.push_back({j, mid});
+		const Piece&                     p = b.pieces[i];
+		std::vector<std::pair<double, int>> at{{p.lo, -1}, {p.mid, -1}, {p.hi, -1}};   // (t, joint)
+		for (int j : p.joints) at.push_back({std::clamp((b.S.V[j] - p.c).dot(p.a), p.lo, p.hi), j});
+		std::sort(at.begin(), at.end());
+		int prev = -1;
+		double tprev = 0;
+		for (const auto& [t, j] : at) {
+			if (prev < 0 || t > tprev) {
+				const int v = b.add_vertex(p.c + t * p.a, i);
+				if (prev >= 0) b.S.E.push_back({prev, v});
+				prev = v, tprev = t;
+			}
+			if (j >= 0) b.S.E.push_back({j, prev});
+		}
 	}
 	b.S.pieces = (int) b.pieces.size();
 	return std::move(b.S);

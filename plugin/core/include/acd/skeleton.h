@@ -1,8 +1,9 @@
-// Skeleton extraction from the decomposition (the paper's Section 7): each part contributes the
-// principal axis of its surface through its centroid, clipped to the part; a part whose axis leaves
-// it or runs off-centre is split further across its axis (so the skeleton refines where the shape
-// bends or twists); the skeletons of the two sides of every cut are joined through the centre of the
-// cut's cross-section.
+// Skeleton extraction from the decomposition tree (the paper's Section 7, Figure 14), top down: a
+// node's skeleton is the principal axis of its convex hull through the hull's centroid, clipped to
+// the node's solid. If that axis leaves the solid (the chord inside spans less than min_cover of the
+// hull's) or runs off-centre, the node's cut splits it and the two sides' skeletons are joined through
+// the centre of the cut's cross-section; a leaf that is still not good is split across its axis (so
+// the skeleton refines where the shape bends or twists). Coarse nodes with a good axis stay whole.
 #pragma once
 
 #include "acd/decompose.h"
@@ -14,6 +15,8 @@ struct SkeletonOptions
 	int    max_refinement = 3;     // splits of one part across its axis, at most (depth)
 	double off_centre     = 0.25;  // refine when the axis chord's middle is this far from the centroid,
 	                               // relative to the chord's length
+	double min_cover      = 0.8;   // refine when the chord inside the piece spans less than this much
+	                               // of the axis across the piece's hull (the axis leaves the piece)
 };
 
 struct Skeleton
