@@ -100,6 +100,16 @@ def test_batch_with_two_workers_resumes_and_records_failures(meshes, tmp_path):
     assert all(rows4[n]["status"] == "ok" for n in shapes)
 
 
+def test_batch_output_inside_its_input_is_not_read_back(tmp_path):
+    V, F = extrude(L_SHAPE, 0, 1)
+    ms = pymeshlab.MeshSet()
+    add_mesh(ms, V, F)
+    ms.save_current_mesh(str(tmp_path / "l.obj"), save_vertex_color=False, save_face_color=False)
+    for _ in range(2):   # the second run would find the first run's OBJ/STL hulls if it looked
+        rows = batch(tmp_path, tmp_path / "out", "--workers", "1")
+        assert list(rows) == ["l.obj"]
+
+
 def test_batch_timeout_is_recorded(meshes, tmp_path):
     in_dir, _ = meshes
     rows = batch(in_dir, tmp_path / "out", "--workers", "2", "--timeout", "0.05")

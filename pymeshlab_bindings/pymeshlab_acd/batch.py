@@ -38,10 +38,13 @@ def options_key(opts):
     return hashlib.sha1(json.dumps({k: opts[k] for k in _OUTPUT_KEYS}, sort_keys=True).encode()).hexdigest()[:12]
 
 
-def find_meshes(in_dir):
-    """Mesh files under in_dir (recursively), sorted, with their output folder names (relative)."""
+def find_meshes(in_dir, out_dir=None):
+    """Mesh files under in_dir (recursively, not those under out_dir: a batch's own outputs are not
+    its inputs), sorted, with their output folder names (relative)."""
     root = pathlib.Path(in_dir)
-    files = sorted(p for p in root.rglob("*") if p.is_file() and p.suffix.lower() in MESH_EXTENSIONS)
+    skip = pathlib.Path(out_dir).resolve() if out_dir else None
+    files = sorted(p for p in root.rglob("*") if p.is_file() and p.suffix.lower() in MESH_EXTENSIONS
+                   and not (skip and p.resolve().is_relative_to(skip)))
     stems = {}
     for p in files:
         stems.setdefault(p.relative_to(root).with_suffix(""), []).append(p)
@@ -226,7 +229,7 @@ def run_batch(in_dir, out_dir, workers=1, ray_address=None, ray_runtime_env=None
         raise ValueError(f"tau must be positive (got {opts['tau']})")
     out_root = pathlib.Path(out_dir)
     out_root.mkdir(parents=True, exist_ok=True)
-    jobs = find_meshes(in_dir)
+    jobs = find_meshes(in_dir, out_root)
     if not jobs:
         raise ValueError(f"no mesh files under {in_dir} (looked for {', '.join(sorted(MESH_EXTENSIONS))})")
     records = {}
