@@ -110,6 +110,20 @@ def test_batch_output_inside_its_input_is_not_read_back(tmp_path):
         assert list(rows) == ["l.obj"]
 
 
+def test_batch_saves_trees_for_coarser_levels(meshes, tmp_path):
+    import pymeshlab_acd
+    in_dir, shapes = meshes
+    rows = batch(in_dir, tmp_path / "out", "--workers", "2", "--save-tree")
+    tree = tmp_path / "out" / rows["sub/torus.obj"]["output"] / "tree.json"
+    assert not list((tmp_path / "out").rglob(".tree-*"))
+    ms = pymeshlab.MeshSet()
+    res, ids = pymeshlab_acd.level_of_detail(ms, tree, tau=20)
+    assert 1 <= len(ids) < int(rows["sub/torus.obj"]["parts"])
+    V, F = shapes["sub/torus.obj"]
+    assert sum(volume(ms.mesh(i).vertex_matrix(), ms.mesh(i).face_matrix()) for i in ids) == pytest.approx(
+        volume(V, F), rel=1e-6)
+
+
 def test_batch_timeout_is_recorded(meshes, tmp_path):
     in_dir, _ = meshes
     rows = batch(in_dir, tmp_path / "out", "--workers", "2", "--timeout", "0.05")

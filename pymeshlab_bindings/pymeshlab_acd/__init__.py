@@ -97,23 +97,24 @@ def mesh_ids(ms):
     return ids
 
 
-def decompose(ms, **params):
-    """Decompose the current mesh. Returns (result dict with the tree under "tree", part layer ids).
+def decompose(ms, with_tree=True, **params):
+    """Decompose the current mesh. Returns (result dict, part layer ids); with `with_tree` (or a
+    `tree_file` to keep), the tree, read back from the JSON file the filter writes, is under "tree".
 
     Parameters are the filter's (tau, tau_unit, cut_plane_selection, max_parts, output_hulls,
     max_hull_vertices, hole_handling, hole_order, preprocessing, wrap_alpha, wrap_offset,
-    on_self_intersection, time_limit). The tree is read from a temporary JSON file the filter writes.
+    on_self_intersection, time_limit, tree_file).
     """
     import tempfile
     before = set(mesh_ids(ms))
     with tempfile.TemporaryDirectory() as tmp:
-        tree_file = params.pop("tree_file", None) or os.path.join(tmp, "tree.json")
+        tree_file = params.pop("tree_file", None) or (os.path.join(tmp, "tree.json") if with_tree else "")
         res = ms.generate_approximate_convex_decomposition(tree_file=str(tree_file), **params)
-        with open(tree_file) as f:
-            res["tree"] = json.load(f)
+        if tree_file:
+            with open(tree_file) as f:
+                res["tree"] = json.load(f)
     new = [i for i in mesh_ids(ms) if i not in before]
     return res, new
-
 
 
 def decompose_polygon(ms, **params):

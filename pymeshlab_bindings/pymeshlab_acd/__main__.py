@@ -109,7 +109,8 @@ def cmd_batch(a):
                         cut_plane_selection=a.cut_plane_selection, max_parts=a.max_parts,
                         max_hull_vertices=a.max_hull_vertices, preprocessing=a.preprocessing,
                         wrap_alpha=a.wrap_alpha, wrap_offset=a.wrap_offset,
-                        time_limit=a.time_limit, timeout=a.timeout, formats=fmt, scale=a.scale, density=a.density)
+                        time_limit=a.time_limit, timeout=a.timeout, formats=fmt, scale=a.scale, density=a.density,
+                        save_tree=a.save_tree)
     w = max([len(pathlib.Path(r["file"]).name) for r in records] + [4])
     print(f"{'file':<{w}}  {'status':<11} {'parts':>5} {'concavity %':>11} {'hulls/vol':>9} {'time s':>7}  "
           f"{'preprocessing':<15} note")
@@ -231,6 +232,8 @@ def main(argv=None):
     b.add_argument("--time-limit", type=float, default=0.0, help="per mesh, in the core (s; 0: none)")
     b.add_argument("--timeout", type=float, default=1800.0, help="per mesh process, killed after (s; 0: none)")
     b.add_argument("--formats", default="obj,stl", help="collision hull files: obj, stl or both")
+    b.add_argument("--save-tree", action="store_true", help="also keep each mesh's tree.json (with geometry: "
+                   "coarser levels later, without recomputing, by pymeshlab_acd.level_of_detail)")
     b.add_argument("--no-progress", dest="progress", action="store_false", help="no progress bar")
     for s in (d, b):
         s.add_argument("--scale", type=float, default=1.0, help="metres per model unit (URDF, MJCF)")

@@ -22,11 +22,11 @@ MESH_EXTENSIONS = {".obj", ".ply", ".stl", ".off", ".3ds", ".dae", ".wrl", ".glt
 
 DEFAULTS = dict(tau=3.0, tau_unit="percent_of_size", cut_plane_selection="best", max_parts=0,
                 max_hull_vertices=64, preprocessing="auto", wrap_alpha=1.0, wrap_offset=0.1, time_limit=0.0, timeout=1800.0,
-                formats=["obj", "stl"], scale=1.0, density=1000.0)
+                formats=["obj", "stl"], scale=1.0, density=1000.0, save_tree=False)
 
 # The options that change a mesh's outputs (a rerun with other values redoes the mesh).
 _OUTPUT_KEYS = ("tau", "tau_unit", "cut_plane_selection", "max_parts", "max_hull_vertices", "preprocessing",
-                "wrap_alpha", "wrap_offset", "time_limit", "formats", "scale", "density")
+                "wrap_alpha", "wrap_offset", "time_limit", "formats", "scale", "density", "save_tree")
 
 HOLLOW_RATIO = 1.5   # hull volume / solid volume above which a wrap is taken to be hollow
 
@@ -75,12 +75,15 @@ def decompose_file(src, out_dir, opts):
         ms = pymeshlab.MeshSet()
         ms.load_new_mesh(str(src))
         source = ms.current_mesh_id()
-        res, ids = decompose(ms, preprocessing=preprocessing, wrap_alpha=alpha, **params)
+        tree = pathlib.Path(out_dir) / f".tree-{preprocessing}-{alpha:g}.json"
+        res, ids = decompose(ms, preprocessing=preprocessing, wrap_alpha=alpha, **params,
+                             **({"tree_file": str(tree)} if opts["save_tree"] else {"with_tree": False}))
         hulls = [i for i in ids if ms.mesh(i).label().startswith("acd_hull_")]
         parts = [i for i in ids if i not in hulls]
         vol = mass_properties(*merged_layers(ms, parts))[0]      # the solid decomposed (the wrap, if wrapped)
         hull_vol = sum(mass_properties(ms.mesh(i).vertex_matrix(), ms.mesh(i).face_matrix())[0] for i in hulls)
-        return dict(ms=ms, source=source, res=res, parts=parts, hulls=hulls, ratio=hull_vol / vol, alpha=alpha)
+        return dict(ms=ms, source=source, res=res, parts=parts, hulls=hulls, ratio=hull_vol / vol, alpha=alpha,
+                    tree=tree)
 
     pre, note = opts["preprocessing"], ""
     if pre != "auto":
@@ -99,6 +102,10 @@ def decompose_file(src, out_dir, opts):
             pre = f"alpha_wrap {a['alpha']:g}%"
             note = f"wrapped: as given, {_reason(e)}"
     ms, source, res, parts, hulls = a["ms"], a["source"], a["res"], a["parts"], a["hulls"]
+    if opts["save_tree"]:   # the chosen attempt's tree, for coarser levels later
+        a["tree"].rename(pathlib.Path(out_dir) / "tree.json")
+        for t in pathlib.Path(out_dir).glob(".tree-*.json"):
+            t.unlink()
     written = export_decomposition(ms, source, parts, hulls, out_dir, name=pathlib.Path(src).stem,
                                    formats=tuple(opts["formats"]), scale=opts["scale"], density=opts["density"])
     m = ms.mesh(source)
