@@ -119,6 +119,20 @@ def add_mesh(ms, V, F, name="input"):
 
 
 # ---- independent checks ---------------------------------------------------------------------
+def component_labels(n, pairs):
+    """Connected-component label of each of n items joined by the (a, b) pairs (union-find)."""
+    parent = list(range(n))
+
+    def root(x):
+        while parent[x] != x:
+            parent[x] = parent[parent[x]]
+            x = parent[x]
+        return x
+    for a, b in pairs:
+        parent[root(a)] = root(b)
+    return np.array([root(x) for x in range(n)])
+
+
 def volume(V, F):
     V = np.asarray(V, float)
     V = V - V.mean(0)   # far from the origin the triple products would cancel catastrophically

@@ -8,8 +8,8 @@ import pymeshlab
 import pytest
 
 import pymeshlab_acd
-from conftest import (L_SHAPE, SHARED, add_mesh, box, extrude, icosphere, inside, is_closed_manifold, torus,
-                      volume, with_cavities)
+from conftest import (L_SHAPE, SHARED, add_mesh, box, component_labels, extrude, icosphere, inside,
+                      is_closed_manifold, torus, volume, with_cavities)
 from test_decompose import check_partition, remeasured_concavity
 
 HANDLING = ["principal_plane", "best_plane", "keep_cavities"]
@@ -34,23 +34,13 @@ def two_cavities():
 
 
 def shells(F):
-    """Face-connected components of a face list (numpy union-find over shared edges)."""
-    parent = list(range(len(F)))
-
-    def root(x):
-        while parent[x] != x:
-            parent[x] = parent[parent[x]]
-            x = parent[x]
-        return x
-    seen = {}
+    """Face-connected components of a face list (faces sharing an edge are joined)."""
+    first, pairs = {}, []
     for f, t in enumerate(F.tolist()):
         for k in range(3):
             e = tuple(sorted((t[k], t[(k + 1) % 3])))
-            if e in seen:
-                parent[root(f)] = root(seen[e])
-            else:
-                seen[e] = f
-    comp = np.array([root(f) for f in range(len(F))])
+            pairs.append((f, first.setdefault(e, f)))
+    comp = component_labels(len(F), pairs)
     return [F[comp == c] for c in np.unique(comp)]
 
 

@@ -6,7 +6,7 @@ import pymeshlab
 import pytest
 
 import pymeshlab_acd
-from conftest import BUNNY, SHARED, add_mesh, inside, is_closed_manifold, torus, volume
+from conftest import BUNNY, SHARED, add_mesh, component_labels, inside, is_closed_manifold, torus, volume
 
 
 def layer(ms, label):
@@ -23,17 +23,7 @@ def samples_along(m, n, seed=0):
 
 
 def components(m):
-    V, E = m.vertex_matrix(), m.edge_matrix()
-    parent = list(range(len(V)))
-
-    def root(x):
-        while parent[x] != x:
-            parent[x] = parent[parent[x]]
-            x = parent[x]
-        return x
-    for a, b in E.tolist():
-        parent[root(a)] = root(b)
-    return len({root(v) for v in range(len(V))})
+    return len(np.unique(component_labels(m.vertex_number(), m.edge_matrix().tolist())))
 
 
 @pytest.mark.parametrize("name", ["bunny", "horse"])
