@@ -17,6 +17,7 @@ import pymeshlab
 
 from . import decompose, decompose_polygon, load, mesh_ids
 from . import polygon_io
+from .batch import DEFAULTS as BATCH
 from .export import export_decomposition
 
 BUNNY = os.path.join(os.path.dirname(pymeshlab.__file__), "tests", "sample_meshes", "bunny.obj")
@@ -219,19 +220,22 @@ def main(argv=None):
                    "or auto), or 'local' to start a local Ray instance of --workers CPUs")
     b.add_argument("--ray-runtime-env", metavar="JSON", help="Ray runtime_env for the workers, e.g. "
                    "'{\"pip\": [\"/shared/pymeshlab_acd-0.1.0-py3-none-any.whl\"]}'")
-    b.add_argument("--tau", type=float, default=3.0, help="concavity tolerance (default 3 = 3%% of size)")
-    b.add_argument("--tau-unit", default="percent_of_size", choices=["percent_of_size", "model_units"])
-    b.add_argument("--cut-plane-selection", default="best", choices=["best", "bisector"])
-    b.add_argument("--max-parts", type=int, default=0)
-    b.add_argument("--max-hull-vertices", type=int, default=64, help="per collision hull (0: no limit)")
-    b.add_argument("--preprocessing", default="auto", choices=["auto", "none", "alpha_wrap"],
+    b.add_argument("--tau", type=float, default=BATCH["tau"], help="concavity tolerance (default 3 = 3%% of size)")
+    b.add_argument("--tau-unit", default=BATCH["tau_unit"], choices=["percent_of_size", "model_units"])
+    b.add_argument("--cut-plane-selection", default=BATCH["cut_plane_selection"], choices=["best", "bisector"])
+    b.add_argument("--max-parts", type=int, default=BATCH["max_parts"])
+    b.add_argument("--max-hull-vertices", type=int, default=BATCH["max_hull_vertices"],
+                   help="per collision hull (0: no limit)")
+    b.add_argument("--preprocessing", default=BATCH["preprocessing"], choices=["auto", "none", "alpha_wrap"],
                    help="auto: decompose as given, and alpha-wrap the meshes that cannot be")
-    b.add_argument("--wrap-alpha", type=float, default=1.0, help="alpha wrap: alpha, %% of size (larger "
-                   "bridges bigger holes in open meshes)")
-    b.add_argument("--wrap-offset", type=float, default=0.1, help="alpha wrap: offset, %% of size")
-    b.add_argument("--time-limit", type=float, default=0.0, help="per mesh, in the core (s; 0: none)")
-    b.add_argument("--timeout", type=float, default=1800.0, help="per mesh process, killed after (s; 0: none)")
-    b.add_argument("--formats", default="obj,stl", help="collision hull files: obj, stl or both")
+    b.add_argument("--wrap-alpha", type=float, default=BATCH["wrap_alpha"],
+                   help="alpha wrap: alpha, %% of size (larger bridges bigger holes in open meshes)")
+    b.add_argument("--wrap-offset", type=float, default=BATCH["wrap_offset"], help="alpha wrap: offset, %% of size")
+    b.add_argument("--time-limit", type=float, default=BATCH["time_limit"],
+                   help="per mesh, in the core (s; 0: none)")
+    b.add_argument("--timeout", type=float, default=BATCH["timeout"],
+                   help="per mesh process, killed after (s; 0: none)")
+    b.add_argument("--formats", default=",".join(BATCH["formats"]), help="collision hull files: obj, stl or both")
     b.add_argument("--save-tree", action="store_true", help="also keep each mesh's tree.json (with geometry: "
                    "coarser levels later, without recomputing, by pymeshlab_acd.level_of_detail)")
     b.add_argument("--no-progress", dest="progress", action="store_false", help="no progress bar")
