@@ -82,17 +82,17 @@ struct Builder
 	std::vector<Piece>     pieces;
 	Skeleton               S;
 
-	// The principal axis of the piece's convex hull through the hull's centroid (the paper's: the
-	// hull ignores surface noise), clipped to the piece. The piece needs splitting when that axis,
-	// across the hull, leaves the piece (so the chord would not span it) or runs off-centre. In- and
-	// outside stretches shorter than tau are the surface's small features, not the shape's.
-	bool chord(Piece& p)
+	// The principal axis of `mesh`'s convex hull through the hull's centroid (the paper's: the hull
+	// ignores surface noise), clipped to the mesh, into p. The piece needs splitting when the chord
+	// inside spans less than min_cover of the axis across the hull, or runs off-centre. Gaps shorter
+	// than tau / 10 and inside stretches shorter than tau are surface features, not the shape's.
+	bool chord(const TriMesh& mesh, Piece& p)
 	{
-		const TriMesh hull = ConvexHull(p.mesh.V).mesh();
+		const TriMesh hull = ConvexHull(mesh.V).mesh();
 		p.c = centroid(hull);
 		p.a = principal_axis(hull, p.c);
 		const std::vector<double> across = crossings(hull, p.c, p.a);
-		const std::vector<double> ts     = crossings(p.mesh, p.c, p.a);
+		const std::vector<double> ts     = crossings(mesh, p.c, p.a);
 		std::vector<std::array<double, 2>> in;   // inside intervals, small gaps closed, slivers dropped
 		for (size_t i = 0; i + 1 < ts.size(); i += 2) {
 			if (!in.empty() && ts[i] - in.back()[1] < 0.1 * D.tau) in.back()[1] = ts[i + 1];
@@ -192,7 +192,7 @@ struct Builder
 	{
 		Piece p;
 		p.mesh = std::move(mesh);
-		if (chord(p) && level < opt.max_refinement) {
+		if (chord(p.mesh, p) && level < opt.max_refinement) {
 			SplitOutcome so;
 			Plane        pl;
 			pl.n = p.a;
@@ -217,8 +217,8 @@ struct Builder
 		const Node& n = D.nodes[id];
 		if (n.leaf()) return refine(n.mesh, 0);
 		Piece p;
-		p.mesh = n.mesh;
-		if (!chord(p)) {
+		if (!chord(n.mesh, p)) {
+			p.mesh = n.mesh;   // kept whole: its caps are needed for the joints
 			pieces.push_back(std::move(p));
 			return {(int) pieces.size() - 1};
 		}
