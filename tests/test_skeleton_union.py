@@ -6,7 +6,7 @@ import pymeshlab
 import pytest
 
 import pymeshlab_acd
-from conftest import BUNNY, SHARED, add_mesh, component_labels, inside, is_closed_manifold, torus, volume
+from conftest import BUNNY, SHARED, add_mesh, component_labels, extrude, inside, is_closed_manifold, torus, volume
 
 
 def layer(ms, label):
@@ -33,7 +33,7 @@ def test_skeleton_inside_and_connected(ms, name):
         pytest.skip(f"{path} not present")
     ms.load_new_mesh(str(path))
     V0, F0 = ms.mesh(0).vertex_matrix(), ms.mesh(0).face_matrix()
-    res = ms.generate_skeleton_from_convex_decomposition(cut_plane_selection="bisector")
+    res = ms.generate_skeleton_from_convex_decomposition()   # default cut: min_section
     sk = layer(ms, "acd_skeleton")
     assert sk.edge_number() == res["edges"] > 0 and sk.face_number() == 0
     assert components(sk) == 1 == res["components"]
@@ -49,36 +49,63 @@ def pathlib_exists(p):
     return pathlib.Path(p).exists()
 
 
-def test_skeleton_refines_bent_parts_and_closes_the_ring(ms):
-    # a ring at a tau that leaves curved arcs: their axes leave them, so they are split further
-    V, F = torus(R=2.0, r=0.5)
+def half_ring():
+    """A C: half an annulus (radii 1.5 and 2.5) extruded by 1; its hull's axis runs across the gap."""
+    th = np.linspace(0, np.pi, 25)
+    return extrude(np.r_[np.c_[2.5 * np.cos(th), 2.5 * np.sin(th)], np.c_[1.5 * np.cos(th[::-1]), 1.5 * np.sin(th[::-1])]], 0, 1)
+
+
+@pytest.mark.parametrize("shape,tau,loops", [("ring", 0.3, 1), ("ring", 0.5, 1), ("C", 1.6, 0)])
+def test_skeleton_refines_bent_parts_and_closes_the_ring(ms, shape, tau, loops):
+    # ring at 0.3: cut into arcs, joined around; ring at 0.5 and the C at 1.6: one tau-convex part
+    # whose hull axis crosses the hole, so the skeleton splits it across the axis at the bend
+    V, F = torus(R=2.0, r=0.5) if shape == "ring" else half_ring()
     add_mesh(ms, V, F)
-    res = ms.generate_skeleton_from_convex_decomposition(tau=0.3, tau_unit="model_units")
+    res = ms.generate_skeleton_from_convex_decomposition(tau=tau, tau_unit="model_units")
     sk = layer(ms, "acd_skeleton")
-    assert res["refinements"] > 0
+    if res["parts"] == 1:
+        assert res["refinements"] > 0
     # pieces: the tree's nodes kept whole (at most its leaves) plus the extra splits
     assert res["pieces"] <= res["parts"] + res["refinements"]
     assert res["components"] == 1 == components(sk)
     # genus 1: a cut meets the ring in two cross-sections, each a joint, so the skeleton has a loop
-    assert sk.edge_number() - sk.vertex_number() + 1 >= 1
+    assert sk.edge_number() - sk.vertex_number() + 1 == loops
+    ratio = inside(V, F, samples_along(sk, 2000)).mean()
+    print(f"{shape} at tau {tau}: {res['parts']} parts, {res['refinements']} refinements, {ratio:.4f} inside")
+    assert ratio >= 0.99
 
 
-def test_skeleton_under_noise_is_measured(ms):
-    # Gaussian noise of 0.5% of the bbox diagonal (the noisy copy is alpha-wrapped first: its faces
-    # cross each other). Recorded, not yet within the 2% the issue asks for (see README).
-    ms.load_new_mesh(BUNNY)
+def skeleton_distances(mesh_path, seeds, **kw):
+    """Mean distance (fraction of the bbox diagonal) between the skeleton of a mesh and that of a copy
+    with Gaussian noise of 0.5% of the diagonal on its vertices (alpha-wrapped: its faces cross), per seed."""
+    ms = pymeshlab.MeshSet()
+    ms.load_new_mesh(str(mesh_path))
     V0, F0 = ms.mesh(0).vertex_matrix(), ms.mesh(0).face_matrix()
     diag = np.linalg.norm(V0.max(0) - V0.min(0))
-    ms.generate_skeleton_from_convex_decomposition(cut_plane_selection="bisector")
+    ms.generate_skeleton_from_convex_decomposition(**kw)
     A = samples_along(layer(ms, "acd_skeleton"), 2000)
-    noisy = pymeshlab.MeshSet()
-    add_mesh(noisy, V0 + np.random.default_rng(1).normal(scale=0.005 * diag, size=V0.shape), F0)
-    noisy.generate_skeleton_from_convex_decomposition(cut_plane_selection="bisector", preprocessing="alpha_wrap")
-    B = samples_along(layer(noisy, "acd_skeleton"), 2000)
     d = lambda X, Y: np.min(np.linalg.norm(X[:, None, :] - Y[None, ::4, :], axis=2), axis=1).mean()
-    mean = 0.5 * (d(A, B) + d(B, A)) / diag
-    print(f"bunny skeleton, noise 0.5% of the diagonal: mean distance {mean:.4f} of the diagonal")
-    assert mean < 0.05
+    out = []
+    for seed in seeds:
+        noisy = pymeshlab.MeshSet()
+        add_mesh(noisy, V0 + np.random.default_rng(seed).normal(scale=0.005 * diag, size=V0.shape), F0)
+        noisy.generate_skeleton_from_convex_decomposition(preprocessing="alpha_wrap", **kw)
+        B = samples_along(layer(noisy, "acd_skeleton"), 2000)
+        out.append(0.5 * (d(A, B) + d(B, A)) / diag)
+    return out
+
+
+@pytest.mark.parametrize("name", ["bunny", "horse"])
+def test_skeleton_under_noise(name):
+    path = BUNNY if name == "bunny" else SHARED / "horse.ply"
+    if not pathlib_exists(path):
+        pytest.skip(f"{path} not present")
+    means = skeleton_distances(path, range(1, 9))
+    print(f"{name} skeleton, noise 0.5% of the diagonal, seeds 1-8: mean distance "
+          + ", ".join(f"{m:.4f}" for m in means) + f" of the diagonal (average {np.mean(means):.4f})")
+    # The issue's bound is 2%. Measured: 15 of the 16 draws below it, one at 0.0200 (README); a draw
+    # can swap the order of two near-equal notches, so one draw is allowed a little more.
+    assert np.mean(means) < 0.02 and max(means) < 0.025
 
 
 @pytest.mark.parametrize("merge", ["together", "boolean_union"])

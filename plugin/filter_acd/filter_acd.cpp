@@ -29,7 +29,8 @@
 
 namespace {
 
-const QStringList kCutPlaneLabels = {"best", "bisector"};
+const QStringList kCutLineLabels  = {"best", "bisector"};
+const QStringList kCutPlaneLabels = {"best", "bisector", "min_section"};
 const QStringList kTauUnitLabels  = {"percent_of_size", "model_units"};
 const QStringList kPreprocessingLabels = {"none", "alpha_wrap"};
 const QStringList kSelfIntersectionLabels = {"warn", "refuse"};
@@ -168,7 +169,8 @@ QString FilterACD::filterInfo(ActionIDType f) const
 		               "its convex hull, clipped to the node's solid; where that axis leaves the solid or runs "
 		               "off-centre, the node's cut splits it (a leaf is split across its axis), and the two "
 		               "sides' skeletons are joined through the centre of each cross-section of the cut. "
-		               "Output: an edge-mesh layer coloured by piece.") +
+		               "The default cut (min_section) goes through the neck at each notch, so surface noise "
+		               "hardly moves the skeleton. Output: an edge-mesh layer coloured by piece.") +
 		       kCitation;
 	case HULL_UNION:
 		return QString("Decomposes the mesh and simplifies it by the union of its parts' convex hulls (the "
@@ -223,7 +225,7 @@ RichParameterList FilterACD::initParameterList(const QAction* a, const MeshModel
 		                    "percent_of_size: tau is a percentage of the enclosing-circle diameter; "
 		                    "model_units: tau is a length in the layer's units."));
 		p.addParam(RichEnum(
-			"cut_line_selection", 0, kCutPlaneLabels, "Cutting line",
+			"cut_line_selection", 0, kCutLineLabels, "Cutting line",
 			"best: try several cuts from the notch (the bisector, directions spread between its two edges' "
 			"extensions, towards nearby notches) and keep the bisector unless another leaves clearly less "
 			"concave pieces; bisector: the paper's cut along the bisector of the notch's edge normals."));
@@ -268,10 +270,12 @@ RichParameterList FilterACD::initParameterList(const QAction* a, const MeshModel
 		"percent_of_size: tau is a percentage of the enclosing-sphere diameter; model_units: tau is a "
 		"length in the mesh's units."));
 	p.addParam(RichEnum(
-		"cut_plane_selection", 0, kCutPlaneLabels, "Cutting plane",
+		"cut_plane_selection", ID(a) == SKELETON ? 2 : 0, kCutPlaneLabels, "Cutting plane",
 		"best: try several planes through the notch (the bisector, planes around its retraction "
 		"direction, the plane parallel to its bridge) and keep the one leaving the least concave parts; "
-		"bisector: the paper's plane through the notch edge bisecting its reflex angle (faster)."));
+		"bisector: the paper's plane through the notch edge bisecting its reflex angle (faster); "
+		"min_section: of the planes through the notch and its retraction direction, the one cutting the "
+		"smallest cross-section (the neck), which surface noise hardly moves (the skeleton's default)."));
 	p.addParam(RichEnum(
 		"hole_handling", 0, kHoleHandlingLabels, "Cavities (hole boundaries)",
 		"How closed inner shells (cavities) are resolved; their notches never reach the hull. "
@@ -323,9 +327,11 @@ RichParameterList FilterACD::initParameterList(const QAction* a, const MeshModel
 		p.addParam(RichInt("max_refinement", 3, "Skeleton: refinement depth",
 		                   "A part whose axis leaves it or runs off-centre is split across its axis, at most "
 		                   "this many times over (0 = never)."));
-		p.addParam(RichFloat("off_centre", 0.25, "Skeleton: off-centre limit",
+		p.addParam(RichFloat("off_centre", 0.2, "Skeleton: off-centre limit",
 		                     "Split a piece when the middle of its axis chord is farther than this fraction of "
-		                     "the chord's length from its hull's centroid."));
+		                     "the chord's length from its hull's centroid, or when, at stations along the chord, "
+		                     "the chord is farther than this fraction of the solid's width across it from the "
+		                     "middle of that width (the chord runs along one side of a bent piece)."));
 		return p;
 	}
 	if (ID(a) == HULL_UNION) {
@@ -439,8 +445,8 @@ FilterACD::Run FilterACD::runDecomposition(const RichParameterList& par, MeshMod
 		throw MLException(QString("tau must be positive (got %1).").arg(tau));
 	acd::DecomposeOptions o;
 	o.tau                 = par.getEnum("tau_unit") == 0 ? tau / 100.0 * size : tau;
-	o.cut_plane_selection = par.getEnum("cut_plane_selection") == 0 ? acd::CutPlaneSelection::Best
-	                                                                 : acd::CutPlaneSelection::Bisector;
+	o.cut_plane_selection = std::array{acd::CutPlaneSelection::Best, acd::CutPlaneSelection::Bisector,
+	                                   acd::CutPlaneSelection::MinSection}[std::clamp(par.getEnum("cut_plane_selection"), 0, 2)];
 	o.max_parts           = par.getInt("max_parts");
 	o.hole_handling       = std::array{acd::HoleHandling::BestPlane, acd::HoleHandling::PrincipalPlane,
                                  acd::HoleHandling::KeepCavities}[std::clamp(par.getEnum("hole_handling"), 0, 2)];

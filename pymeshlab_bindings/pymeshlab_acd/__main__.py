@@ -196,7 +196,7 @@ def main(argv=None):
         s.add_argument("--no-progress", dest="progress", action="store_false", help="do not print progress")
     d.add_argument("--tau", type=float, default=2.0, help="concavity tolerance (default 2 = 2%% of size)")
     d.add_argument("--tau-unit", default="percent_of_size", choices=["percent_of_size", "model_units"])
-    d.add_argument("--cut-plane-selection", default="best", choices=["best", "bisector"])
+    d.add_argument("--cut-plane-selection", default="best", choices=["best", "bisector", "min_section"])
     d.add_argument("--max-parts", type=int, default=0)
     d.add_argument("--hole-handling", default="best_plane", choices=["best_plane", "principal_plane", "keep_cavities"],
                    help="how cavities (closed inner shells) are resolved")
@@ -222,7 +222,7 @@ def main(argv=None):
                    "'{\"pip\": [\"/shared/pymeshlab_acd-0.1.0-py3-none-any.whl\"]}'")
     b.add_argument("--tau", type=float, default=BATCH["tau"], help="concavity tolerance (default 3 = 3%% of size)")
     b.add_argument("--tau-unit", default=BATCH["tau_unit"], choices=["percent_of_size", "model_units"])
-    b.add_argument("--cut-plane-selection", default=BATCH["cut_plane_selection"], choices=["best", "bisector"])
+    b.add_argument("--cut-plane-selection", default=BATCH["cut_plane_selection"], choices=["best", "bisector", "min_section"])
     b.add_argument("--max-parts", type=int, default=BATCH["max_parts"])
     b.add_argument("--max-hull-vertices", type=int, default=BATCH["max_hull_vertices"],
                    help="per collision hull (0: no limit)")

@@ -110,6 +110,16 @@ Plane through(const Vec3& p, Vec3 n)
 	return pl;
 }
 
+// The way out of the pocket at p: towards the nearest point of the hull. The bridge facet's normal
+// would do on a clean mesh, but a noisy pocket is lidded by many small facets, and which one is the
+// bridge (so its normal) jumps; the nearest point moves with the surface.
+Vec3 retraction(const ConvexHull& hull, const Vec3& p, int bridge)
+{
+	Vec3         q;
+	const double d = hull.distance_to_boundary(p, nullptr, -1, &q);
+	return d > 1e-9 ? Vec3((q - p) / d) : hull.facet_plane[bridge].n;
+}
+
 } // namespace
 
 std::vector<Plane> cavity_planes(const TriMesh& m, const std::vector<int>& faces, const ConvexHull& hull,
@@ -195,13 +205,14 @@ std::vector<Plane> candidate_planes(const TriMesh& m, const Topology& topo, cons
 			}
 		}
 	}
-	if (best > 0 && bis.norm() > 1e-12) out.push_back(through(p, edge.cross(bis)));
+	if (sel != CutPlaneSelection::MinSection && best > 0 && bis.norm() > 1e-12) out.push_back(through(p, edge.cross(bis)));
 	if (sel == CutPlaneSelection::Bisector && !out.empty()) return out;
 
 	// Planes containing the retraction direction (the bridge's normal), at evenly spread angles
 	// starting from the notch edge's direction; and the plane parallel to the bridge.
 	if (rep.max_bridge >= 0) {
-		const Vec3 nb = hull.facet_plane[rep.max_bridge].n;
+		const Vec3 nb = sel == CutPlaneSelection::MinSection ? retraction(hull, p, rep.max_bridge)
+		                                                     : hull.facet_plane[rep.max_bridge].n;
 		Vec3       u  = edge - nb * nb.dot(edge);
 		if (u.norm() < 1e-9) u = nb.unitOrthogonal();
 		u.normalize();
@@ -210,7 +221,7 @@ std::vector<Plane> candidate_planes(const TriMesh& m, const Topology& topo, cons
 			const double th = M_PI * k / around;
 			out.push_back(through(p, std::cos(th) * u + std::sin(th) * w));
 		}
-		out.push_back(through(p, nb));
+		if (sel != CutPlaneSelection::MinSection) out.push_back(through(p, nb));
 	}
 	return out;
 }
@@ -550,19 +561,24 @@ Decomposition decompose_normalized(const Solid& solid, const DecomposeOptions& o
 		}
 		std::vector<Plane> planes;
 		Vec3               notch;
-		if (hole >= 0) planes = cavity_planes(mesh, ms.cavities[hole], ms.hull, opt.hole_handling, opt.candidate_planes, notch);
-		else {
-			planes = candidate_planes(ms.surface(mesh), ms.topo, ms.hull, ms.rep, opt.cut_plane_selection, opt.candidate_planes);
-			if (opt.cut_plane_selection == CutPlaneSelection::Bisector && planes.size() == 1) {
+		CutPlaneSelection sel = opt.cut_plane_selection;
+		if (hole < 0) {
+			notch = ms.surface(mesh).V[ms.rep.max_vertex];
+			// A notch on the hull itself (a prism's inner corner at its end face) has no way out to turn
+			// a neck's planes around: the paper's bisector it is.
+			if (sel == CutPlaneSelection::MinSection && ms.hull.distance_to_boundary(notch) <= 1e-9)
+				sel = CutPlaneSelection::Bisector;
+			planes = candidate_planes(ms.surface(mesh), ms.topo, ms.hull, ms.rep, sel, opt.candidate_planes);
+			if (sel == CutPlaneSelection::Bisector && planes.size() == 1) {
 				// Fall back to the other candidates only if the bisector cannot split.
 				auto more = candidate_planes(ms.surface(mesh), ms.topo, ms.hull, ms.rep, CutPlaneSelection::Best, opt.candidate_planes);
 				planes.insert(planes.end(), more.begin() + std::min<size_t>(1, more.size()), more.end());
 			}
-			notch = ms.surface(mesh).V[ms.rep.max_vertex];
 		}
+		else planes = cavity_planes(mesh, ms.cavities[hole], ms.hull, opt.hole_handling, opt.candidate_planes, notch);
 		// Try planes in order and keep the first that splits (the paper's planes), or score them all.
-		const bool first_fit = hole >= 0 ? opt.hole_handling != HoleHandling::BestPlane
-		                                 : opt.cut_plane_selection == CutPlaneSelection::Bisector;
+		const bool first_fit  = hole >= 0 ? opt.hole_handling != HoleHandling::BestPlane : sel == CutPlaneSelection::Bisector;
+		const bool by_section = hole < 0 && sel == CutPlaneSelection::MinSection;
 
 		// Split and score every candidate plane; candidates are independent, so use all cores.
 		struct Trial
@@ -588,6 +604,11 @@ Decomposition decompose_normalized(const Solid& solid, const DecomposeOptions& o
                 }
             if (first_fit) {
                 t.ok = true;
+                return;
+            }
+            if (by_section) {
+                t.score = t.so.cap_area;
+                t.ok    = true;
                 return;
             }
             try {
@@ -625,8 +646,25 @@ Decomposition decompose_normalized(const Solid& solid, const DecomposeOptions& o
 			if (pick >= 0) break;
 		}
 		// For a notch (not a cavity, whose planes are all scored alike): see above.
-		if (hole < 0 && pick > 0 && trials[0].ok && !trials[0].crosses && !(trials[pick].score < 0.9 * trials[0].score))
+		if (hole < 0 && !by_section && pick > 0 && trials[0].ok && !trials[0].crosses &&
+		    !(trials[pick].score < 0.9 * trials[0].score))
 			pick = 0;
+		// The fan samples the section's area every pi/K: the parabola through the smallest and its
+		// neighbours puts the neck between samples, so the plane turns smoothly as the shape does.
+		if (by_section && pick >= 0 && ms.rep.max_bridge >= 0) {
+			const int    K = (int) planes.size();
+			const Trial &l = trials[(pick + K - 1) % K], &r = trials[(pick + 1) % K];
+			const double curv = l.score - 2 * trials[pick].score + r.score;
+			if (K >= 3 && l.ok && r.ok && curv > 0) {
+				const double phi = 0.5 * (l.score - r.score) / curv * M_PI / K;
+				const Vec3   axis = planes[0].n.cross(planes[1].n).normalized(), n = planes[pick].n;   // the fan's
+				planes.push_back(through(notch, std::cos(phi) * n + std::sin(phi) * axis.cross(n)));
+				trials.emplace_back();
+				run_trial(planes.size() - 1);
+				if (trials.back().ok && !trials.back().crosses && trials.back().score < trials[pick].score)
+					pick = (int) planes.size() - 1;
+			}
+		}
 		const bool   found = pick >= 0;
 		SplitOutcome best;
 		if (found) best = std::move(trials[pick].so);

@@ -185,7 +185,7 @@ ConvexHull::ConvexHull(const std::vector<Vec3>& input)
 	tree_->aabb.accelerate_distance_queries();
 }
 
-double ConvexHull::distance_to_boundary(const Vec3& p, int* triangle, int near) const
+double ConvexHull::distance_to_boundary(const Vec3& p, int* triangle, int near, Vec3* closest) const
 {
 	const Point q = to_cgal(p);
 	auto        hit = near < 0 ? tree_->aabb.closest_point_and_primitive(q)
@@ -193,6 +193,7 @@ double ConvexHull::distance_to_boundary(const Vec3& p, int* triangle, int near) 
 	                                 q, std::make_pair(K().construct_projected_point_3_object()(tree_->tris[near], q),
 	                                                   tree_->tris.cbegin() + near));
 	if (triangle) *triangle = (int) (hit.second - tree_->tris.cbegin());
+	if (closest) *closest = Vec3(hit.first.x(), hit.first.y(), hit.first.z());
 	return std::sqrt(CGAL::squared_distance(hit.first, q));
 }
 

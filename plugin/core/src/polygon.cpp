@@ -733,7 +733,7 @@ Decomposition2 decompose_unit(const Polygon2& poly, const DecomposeOptions& opt)
 			Vec2 bis = u1 + u2;
 			if (bis.norm() < 1e-12) bis = Vec2(-u1.y(), u1.x());
 			cands.push_back({cur, bis.normalized(), r});
-			if (opt.cut_plane_selection == CutPlaneSelection::Best) {
+			if (opt.cut_plane_selection != CutPlaneSelection::Bisector) {   // min_section is 3D only: as best
 				const double span = std::atan2(cross(u1, u2), u1.dot(u2));   // from u1 to u2
 				const int    m    = std::max(2, opt.candidate_planes);
 				// the cone's own edges too: a cut continuing an edge can reach the next notch in line

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iterator>
 #include <map>
 #include <numeric>
 
@@ -86,7 +87,7 @@ struct Builder
 	// ignores surface noise), clipped to the mesh, into p. The piece needs splitting when the chord
 	// inside spans less than min_cover of the axis across the hull, or runs off-centre. Gaps shorter
 	// than tau / 10 and inside stretches shorter than tau are surface features, not the shape's.
-	bool chord(const TriMesh& mesh, Piece& p)
+	bool chord(const TriMesh& mesh, Piece& p, bool along)
 	{
 		const TriMesh hull = ConvexHull(mesh.V).mesh();
 		p.c = centroid(hull);
@@ -98,8 +99,11 @@ struct Builder
 			if (!in.empty() && ts[i] - in.back()[1] < 0.1 * D.tau) in.back()[1] = ts[i + 1];
 			else in.push_back({ts[i], ts[i + 1]});
 		}
-		if (in.size() > 1)
-			in.erase(std::remove_if(in.begin(), in.end(), [&](const auto& r) { return r[1] - r[0] < D.tau; }), in.end());
+		if (in.size() > 1) {   // unless all are that short (tau can be large): then they are the shape
+			std::vector<std::array<double, 2>> long_enough;
+			std::copy_if(in.begin(), in.end(), std::back_inserter(long_enough), [&](const auto& r) { return r[1] - r[0] >= D.tau; });
+			if (!long_enough.empty()) in.swap(long_enough);
+		}
 		// the interval holding the centroid, else the nearest
 		int    best = -1;
 		double gap  = HUGE_VAL;
@@ -107,16 +111,32 @@ struct Builder
 			const double d = in[i][0] > 0 ? in[i][0] : in[i][1] < 0 ? -in[i][1] : 0;
 			if (d < gap) gap = d, best = i;
 		}
-		if (best < 0 || across.size() < 2) {   // no crossing found (degenerate): a point
+		if (best < 0 || across.size() < 2) {   // the axis misses the solid: split there; degenerate: a point
 			p.lo = p.hi = p.mid = 0;
-			return false;
+			return across.size() >= 2;
 		}
 		p.lo  = in[best][0];
 		p.hi  = in[best][1];
 		p.mid = gap > 0 ? (p.lo + p.hi) / 2 : 0;
 		const bool leaves = p.hi - p.lo < opt.min_cover * (across.back() - across.front());
 		const bool off    = std::abs((p.lo + p.hi) / 2) > opt.off_centre * (p.hi - p.lo);
-		return leaves || off || gap > 0;
+		if (leaves || off || gap > 0) return true;
+		if (!along) return false;
+		// Centred along its length too: at stations along the middle of the chord, the solid's extent
+		// across the axis (two directions) is centred on the chord. A node bent at a joint (a body with
+		// its neck) has a chord that stays inside but runs along one side. (Not asked of leaves: they
+		// are tau-convex, and their ends are caps, rarely centred.)
+		const Vec3 u = p.a.unitOrthogonal(), v = p.a.cross(u);
+		for (int k = 1; k <= 7; ++k) {
+			const Vec3 x = p.c + (p.lo + (p.hi - p.lo) * k / 8) * p.a;
+			for (const Vec3& d : {u, v}) {
+				const std::vector<double> s = crossings(mesh, x, d);
+				for (size_t i = 0; i + 1 < s.size(); i += 2)
+					if (s[i] <= 0 && s[i + 1] >= 0 && std::abs(s[i] + s[i + 1]) / 2 > opt.off_centre * (s[i + 1] - s[i]))
+						return true;
+			}
+		}
+		return false;
 	}
 
 	struct CapFace
@@ -192,12 +212,13 @@ struct Builder
 	{
 		Piece p;
 		p.mesh = std::move(mesh);
-		if (chord(p.mesh, p) && level < opt.max_refinement) {
+		if (chord(p.mesh, p, false) && level < opt.max_refinement) {
+			// across the axis through the centroid: a bent piece halves at its bend
 			SplitOutcome so;
 			Plane        pl;
 			pl.n = p.a;
-			pl.d = p.a.dot(p.c + p.mid * p.a);
-			if (separate(p.mesh, pl, p.c + p.mid * p.a, so)) {
+			pl.d = p.a.dot(p.c);
+			if (separate(p.mesh, pl, p.c, so)) {
 				++S.refined;
 				std::vector<int> a = refine(std::move(so.parts[0]), level + 1);
 				std::vector<int> b = refine(std::move(so.parts[1]), level + 1);
@@ -217,7 +238,7 @@ struct Builder
 		const Node& n = D.nodes[id];
 		if (n.leaf()) return refine(n.mesh, 0);
 		Piece p;
-		if (!chord(n.mesh, p)) {
+		if (!chord(n.mesh, p, true)) {
 			p.mesh = n.mesh;   // kept whole: its caps are needed for the joints
 			pieces.push_back(std::move(p));
 			return {(int) pieces.size() - 1};

@@ -111,6 +111,31 @@ TriMesh torus(double R, double r, int nu, int nv)
 	return m;
 }
 
+TriMesh lathe(const std::vector<Eigen::Vector2d>& profile, int nu)
+{
+	// poles at both ends, a ring of nu vertices for every profile point between them
+	TriMesh    m;
+	const int  rings = (int) profile.size() - 2;
+	const auto ring  = [&](int k, int i) { return 1 + (k - 1) * nu + (i % nu); };
+	m.V.emplace_back(0, 0, profile.front().y());
+	for (int k = 1; k <= rings; ++k)
+		for (int i = 0; i < nu; ++i) {
+			const double u = 2 * M_PI * i / nu;
+			m.V.emplace_back(profile[k].x() * std::cos(u), profile[k].x() * std::sin(u), profile[k].y());
+		}
+	m.V.emplace_back(0, 0, profile.back().y());
+	const int top = (int) m.V.size() - 1;
+	for (int i = 0; i < nu; ++i) {
+		m.F.push_back({0, ring(1, i + 1), ring(1, i)});
+		for (int k = 1; k < rings; ++k) {
+			m.F.push_back({ring(k, i), ring(k, i + 1), ring(k + 1, i + 1)});
+			m.F.push_back({ring(k, i), ring(k + 1, i + 1), ring(k + 1, i)});
+		}
+		m.F.push_back({ring(rings, i), ring(rings, i + 1), top});
+	}
+	return signed_volume(m) < 0 ? inverted(m) : m;
+}
+
 TriMesh merge(const TriMesh& a, const TriMesh& b)
 {
 	TriMesh m = a;

@@ -11,6 +11,8 @@ TriMesh box(Vec3 lo, Vec3 hi);
 TriMesh extrude(const std::vector<Eigen::Vector2d>& poly, double z0, double z1);
 TriMesh sphere(int subdivisions, double radius);
 TriMesh torus(double R, double r, int nu, int nv);
+// A solid of revolution about z: profile (r, z) from the bottom pole (r = 0) to the top pole (r = 0).
+TriMesh lathe(const std::vector<Eigen::Vector2d>& profile, int nu);
 TriMesh merge(const TriMesh& a, const TriMesh& b);
 TriMesh inverted(TriMesh m);
 std::vector<Eigen::Vector2d> l_shape();   // (0,0)-(2,0)-(2,1)-(1,1)-(1,2)-(0,2)

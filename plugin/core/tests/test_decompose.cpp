@@ -31,7 +31,7 @@ ACD_TEST(convex_gives_one_part)
 
 ACD_TEST(l_u_plus_known_counts)
 {
-	for (auto sel : {CutPlaneSelection::Bisector, CutPlaneSelection::Best}) {
+	for (auto sel : {CutPlaneSelection::Bisector, CutPlaneSelection::Best, CutPlaneSelection::MinSection}) {
 		TriMesh L = shapes::extrude(shapes::l_shape(), 0, 0.5);
 		auto    d = run(L, 0.01, sel);
 		CHECK(d.leaves().size() == 2);
@@ -54,4 +54,18 @@ ACD_TEST(torus_needs_at_least_three_parts)
 	auto    d = run(T, 0.1);
 	CHECK(d.leaves().size() >= 3);
 	check_partition(T, d);
+}
+
+ACD_TEST(min_section_cuts_the_neck)
+{
+	// A spindle pinched by a lopsided V at z = 1.2: the bisector of the notch's faces leans with the V;
+	// the narrowest cross-section through the notch is the horizontal disc.
+	const TriMesh spindle = shapes::lathe({{0, 0}, {1, 0}, {1, 0.4}, {0.4, 1.2}, {1, 2.8}, {1, 3.2}, {0, 3.2}}, 48);
+	const auto    neck    = run(spindle, 0.05, CutPlaneSelection::MinSection);
+	const auto    bis     = run(spindle, 0.05, CutPlaneSelection::Bisector);
+	CHECK(neck.nodes[0].has_plane && bis.nodes[0].has_plane);
+	CHECK(std::abs(neck.nodes[0].plane.n.z()) > 0.999);
+	CHECK(std::abs(bis.nodes[0].plane.n.z()) < 0.99);   // the test tells the two apart
+	check_partition(spindle, neck);
+	for (int i : neck.leaves()) CHECK(neck.nodes[i].concavity <= 0.05);
 }

@@ -13,8 +13,10 @@ namespace acd {
 enum class CutPlaneSelection
 {
 	Bisector,   // the paper: through the notch edge, bisecting its reflex dihedral angle
-	Best        // several planes through the notch (bisector, around its retraction direction,
+	Best,       // several planes through the notch (bisector, around its retraction direction,
 	            // parallel to its bridge), keeping the one whose parts are least concave
+	MinSection  // (3D; polygons take Best) the neck: the plane through the notch and its retraction direction whose cut
+	            // cross-section is smallest (steady under surface noise; the skeleton's choice)
 };
 
 // Cavities (closed inner shells) are the paper's hole boundaries: their notches can never retract to

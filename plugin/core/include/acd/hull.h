@@ -30,7 +30,7 @@ public:
 	int facets() const { return (int) facet_plane.size(); }
 	// Distance from p to the hull's boundary, and the triangle that realises it. A triangle `near`
 	// p's nearest one (a mesh neighbour's, say) seeds the search: much faster than none (-1).
-	double distance_to_boundary(const Vec3& p, int* triangle = nullptr, int near = -1) const;
+	double distance_to_boundary(const Vec3& p, int* triangle = nullptr, int near = -1, Vec3* closest = nullptr) const;
 	std::vector<int> point_triangle;   // a triangle incident to each hull vertex
 	// The facet among those touching triangle t's corners whose normal is closest to n: which facet
 	// a surface face near t lies on, even when its centroid is nearest to a neighbouring facet.

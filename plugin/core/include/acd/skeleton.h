@@ -13,8 +13,10 @@ namespace acd {
 struct SkeletonOptions
 {
 	int    max_refinement = 3;     // splits of one part across its axis, at most (depth)
-	double off_centre     = 0.25;  // refine when the axis chord's middle is this far from the centroid,
-	                               // relative to the chord's length
+	double off_centre     = 0.2;   // refine when the axis chord's middle is this far from the centroid,
+	                               // relative to the chord's length; or, at stations along the chord,
+	                               // this far from the middle of the solid's width across it, relative
+	                               // to that width
 	double min_cover      = 0.8;   // refine when the chord inside the piece spans less than this much
 	                               // of the axis across the piece's hull (the axis leaves the piece)
 };
