@@ -15,4 +15,7 @@ for tau in 8 4; do
 	python3 -m pymeshlab_acd decompose --tau "$tau" --hulls --out "$out/tau_$tau"
 done
 echo
+echo "== From the tree: a coarser level without recomputing, the skeleton, the hull union (tau = 3%) =="
+python3 -m pymeshlab_acd structure --tau 3 --coarser 6 --no-progress --out "$out/structure"
+echo
 echo "Output files: $out"

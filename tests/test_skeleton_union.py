@@ -1,6 +1,10 @@
 """Skeleton and hull-union simplification from the decomposition (issue 7, part). Checked here:
 skeleton points inside the mesh (ray parity in numpy), connectivity (union-find), the union's volume
 IoU re-estimated in numpy, face counts."""
+import re
+import subprocess
+import sys
+
 import numpy as np
 import pymeshlab
 import pytest
@@ -144,3 +148,26 @@ def test_hull_union_simplifies_faithfully(ms, merge):
         # the parts tile the mesh, so their exact hulls hold it: IoU >= mesh volume / sum of hull volumes
         bound = volume(V0, F0) / sum(volume(h.vertex_matrix(), h.face_matrix()) for h in hulls)
         assert res["volume_iou"] >= bound - 4 * res["volume_iou_stderr"]
+
+
+def test_cli_structure_reports_level_skeleton_and_union(tmp_path):
+    # the demo's command on a ring: a coarser level from the saved tree, the skeleton, the hull union
+    V, F = torus(R=2.0, r=0.5)
+    ms = pymeshlab.MeshSet()
+    add_mesh(ms, V, F)
+    ms.save_current_mesh(str(tmp_path / "ring.obj"))
+    p = subprocess.run([sys.executable, "-m", "pymeshlab_acd", "structure", str(tmp_path / "ring.obj"), "--tau", "3",
+                        "--coarser", "12", "--out", str(tmp_path / "out"), "--no-progress"],
+                       capture_output=True, text=True, timeout=600)
+    assert p.returncode == 0, p.stdout + p.stderr
+    print(p.stdout)
+    fine = int(re.search(r"decomposition +tau 3.0%: (\d+) parts", p.stdout).group(1))
+    coarse = int(re.search(r"coarser level +tau 12.0%: (\d+) parts", p.stdout).group(1))
+    assert fine >= 3 and coarse == 1   # the ring's concavity (0.5) is within 12% of its size (5)
+    sk = pymeshlab.MeshSet()
+    sk.load_new_mesh(str(tmp_path / "out" / "skeleton.obj"))
+    assert sk.current_mesh().edge_number() > 0
+    assert inside(V, F, samples_along(sk.current_mesh(), 500)).mean() >= 0.99
+    un = pymeshlab.MeshSet()
+    un.load_new_mesh(str(tmp_path / "out" / "hull_union.obj"))
+    assert 0 < un.current_mesh().face_number() < 64 * 2 * fine

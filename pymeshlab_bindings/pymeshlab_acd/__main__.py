@@ -1,4 +1,4 @@
-"""Command line: python -m pymeshlab_acd {concavity,decompose} [MESH] [options]
+"""Command line: python -m pymeshlab_acd {concavity,decompose,structure} [MESH] [options]
               python -m pymeshlab_acd polygon POLYGON [options]
               python -m pymeshlab_acd batch IN_DIR OUT_DIR [--workers N] [--ray ADDRESS|local] [options]
 
@@ -15,7 +15,7 @@ import time
 import numpy as np
 import pymeshlab
 
-from . import decompose, decompose_polygon, load, mesh_ids
+from . import decompose, decompose_polygon, level_of_detail, load, mesh_ids
 from . import polygon_io
 from .batch import DEFAULTS as BATCH
 from .export import export_decomposition
@@ -94,6 +94,54 @@ def cmd_decompose(a):
                   f"{w['mlp'][0]} to {out / 'export'}")
     elif a.export:
         raise ValueError("--export needs --out")
+    return 0
+
+
+def cmd_structure(a):
+    """What the tree gives (the paper's Section 7, Figure 18): a coarser level read back from the saved tree,
+    the skeleton (its points checked against the mesh by MeshLab's own signed distance), the hull union."""
+    ms = _meshset(a.mesh, a.progress)
+    src = ms.current_mesh_id()
+    out = pathlib.Path(a.out)
+    out.mkdir(parents=True, exist_ok=True)
+    res, _ = decompose(ms, tau=a.tau, tree_file=str(out / "tree.json"), with_tree=False)
+    ms.set_verbosity(False)
+    print(f"mesh             {a.mesh}  ({ms.mesh(src).face_number()} faces)")
+    print(f"decomposition    tau {a.tau}%: {res['parts']} parts in {res['time']:.2f} s, tree saved to {out / 'tree.json'}")
+    t0 = time.perf_counter()
+    lod, _ = level_of_detail(ms, out / "tree.json", tau=a.coarser)
+    print(f"coarser level    tau {a.coarser}%: {lod['parts']} parts from the saved tree in "
+          f"{time.perf_counter() - t0:.2f} s (nothing recomputed)")
+
+    ms.set_current_mesh(src)
+    sk = ms.generate_skeleton_from_convex_decomposition(tau=a.tau)
+    ms.set_current_mesh([i for i in mesh_ids(ms) if ms.mesh(i).label() == "acd_skeleton"][-1])
+    V, E = ms.current_mesh().vertex_matrix(), ms.current_mesh().edge_matrix()
+    ms.save_current_mesh(str(out / "skeleton.obj"))
+    # 2000 points along the edges, by length; inside the mesh where MeshLab's signed distance is negative
+    rng = np.random.default_rng(0)
+    length = np.linalg.norm(V[E[:, 1]] - V[E[:, 0]], axis=1)
+    pick = rng.choice(len(E), 2000, p=length / length.sum())
+    t = rng.random((2000, 1))
+    ms.add_mesh(pymeshlab.Mesh(vertex_matrix=V[E[pick, 0]] * (1 - t) + V[E[pick, 1]] * t), "skeleton_samples")
+    ms.compute_scalar_by_distance_from_another_mesh_per_vertex(
+        measuremesh=ms.current_mesh_id(), refmesh=src, signeddist=True, maxdist=pymeshlab.PercentageValue(100))
+    inside = float((ms.current_mesh().vertex_scalar_array() < 0).mean())
+    print(f"skeleton         {sk['pieces']} pieces, {sk['vertices']} vertices, {sk['edges']} edges, "
+          f"{sk['components']} component(s); {100 * inside:.1f}% of 2000 points along it inside the mesh; "
+          f"{out / 'skeleton.obj'}")
+
+    ms.set_current_mesh(src)
+    hu = ms.generate_convex_hull_union(tau=a.tau, max_hull_vertices=a.max_hull_vertices)
+    union = [i for i in mesh_ids(ms) if ms.mesh(i).label() == "acd_hull_union"][-1]
+    ms.set_current_mesh(union)
+    ms.save_current_mesh(str(out / "hull_union.obj"))
+    print(f"hull union       {hu['hulls']} hulls of at most {a.max_hull_vertices} vertices: {hu['union_faces']} "
+          f"faces from {hu['input_faces']} ({hu['face_reduction']:.1f}x fewer), volume IoU with the mesh "
+          f"{hu['volume_iou']:.3f} +- {hu['volume_iou_stderr']:.3f}; {out / 'hull_union.obj'}")
+    if sk["components"] != 1 or inside < 0.99:
+        print("note             the skeleton is not one component lying inside the mesh")
+        return 1
     return 0
 
 
@@ -212,6 +260,13 @@ def main(argv=None):
     d.add_argument("--on-self-intersection", default="warn", choices=["warn", "refuse"])
     d.add_argument("--export", action="store_true",
                    help="also write collision hulls (OBJ, STL), a URDF, an MJCF and a MeshLab project to OUT/export")
+    st = sub.add_parser("structure", help="from the tree: a coarser level, the skeleton, the hull union")
+    st.add_argument("mesh", nargs="?", default=BUNNY, help="closed mesh file (default: pymeshlab's bunny)")
+    st.add_argument("--out", required=True, help="folder for tree.json, skeleton.obj, hull_union.obj")
+    st.add_argument("--no-progress", dest="progress", action="store_false", help="do not print progress")
+    st.add_argument("--tau", type=float, default=3.0, help="concavity tolerance (default 3 = 3%% of size)")
+    st.add_argument("--coarser", type=float, default=6.0, help="coarser tau read back from the tree (%% of size)")
+    st.add_argument("--max-hull-vertices", type=int, default=64, help="per hull of the union")
     b = sub.add_parser("batch", help="decompose every mesh under a folder, with physics-ready export")
     b.add_argument("in_dir")
     b.add_argument("out_dir")
@@ -245,7 +300,7 @@ def main(argv=None):
     a = p.parse_args(argv)
     try:
         return {"concavity": cmd_concavity, "decompose": cmd_decompose, "polygon": cmd_polygon,
-                "batch": cmd_batch}[a.cmd](a)
+                "batch": cmd_batch, "structure": cmd_structure}[a.cmd](a)
     except (pymeshlab.PyMeshLabException, ValueError, OSError) as e:
         print(f"error: {e}", file=sys.stderr)
         return 1
