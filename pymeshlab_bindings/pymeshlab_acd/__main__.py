@@ -104,7 +104,7 @@ def cmd_structure(a):
     src = ms.current_mesh_id()
     out = pathlib.Path(a.out)
     out.mkdir(parents=True, exist_ok=True)
-    res, _ = decompose(ms, tau=a.tau, tree_file=str(out / "tree.json"), with_tree=False)
+    res, _ = decompose(ms, tau=a.tau, tree_file=str(out / "tree.json"))
     ms.set_verbosity(False)
     print(f"mesh             {a.mesh}  ({ms.mesh(src).face_number()} faces)")
     print(f"decomposition    tau {a.tau}%: {res['parts']} parts in {res['time']:.2f} s, tree saved to {out / 'tree.json'}")

@@ -14,6 +14,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <map>
+#include <optional>
 #include <queue>
 #include <set>
 #include <sstream>
@@ -112,12 +113,14 @@ Plane through(const Vec3& p, Vec3 n)
 
 // The way out of the pocket at p: towards the nearest point of the hull. The bridge facet's normal
 // would do on a clean mesh, but a noisy pocket is lidded by many small facets, and which one is the
-// bridge (so its normal) jumps; the nearest point moves with the surface.
-Vec3 retraction(const ConvexHull& hull, const Vec3& p, int bridge)
+// bridge (so its normal) jumps; the nearest point moves with the surface. None when p lies on the
+// hull (a prism's inner corner at its end face).
+std::optional<Vec3> retraction(const ConvexHull& hull, const Vec3& p)
 {
 	Vec3         q;
 	const double d = hull.distance_to_boundary(p, nullptr, -1, &q);
-	return d > 1e-9 ? Vec3((q - p) / d) : hull.facet_plane[bridge].n;
+	if (!(d > 1e-9)) return std::nullopt;
+	return Vec3((q - p) / d);
 }
 
 } // namespace
@@ -126,23 +129,12 @@ std::vector<Plane> cavity_planes(const TriMesh& m, const std::vector<int>& faces
                                  HoleHandling handling, int around, Vec3& centre)
 {
 	// Area-weighted moments of the cavity's surface: its vertices alone would follow the sampling.
-	double          area = 0;
-	Vec3            c    = Vec3::Zero();
-	Eigen::Matrix3d M    = Eigen::Matrix3d::Zero();
-	for (int f : faces) {
-		const Vec3 &a = m.V[m.F[f][0]], &b = m.V[m.F[f][1]], &d = m.V[m.F[f][2]];
-		const double w = 0.5 * (b - a).cross(d - a).norm();
-		area += w;
-		c += w * (a + b + d) / 3;
-		// second moment of the triangle about the origin
-		M += w / 12 * (a * a.transpose() + b * b.transpose() + d * d.transpose() +
-		               (a + b + d) * (a + b + d).transpose());
-	}
-	std::vector<Plane> out;
-	if (!(area > 0)) return out;
-	c /= area;
-	centre = c;
-	const Eigen::Matrix3d cov = M / area - c * c.transpose();
+	const SurfaceMoments mo = surface_moments(m, Vec3::Zero(), &faces);
+	std::vector<Plane>   out;
+	if (!(mo.area > 0)) return out;
+	const Vec3 c = mo.centroid;
+	centre       = c;
+	const Eigen::Matrix3d cov = mo.second / mo.area - c * c.transpose();
 	Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es(cov);   // eigenvalues ascending
 	// The principal plane contains the two major axes: its normal is the minor axis.
 	for (int k = 0; k < 3; ++k) {
@@ -211,8 +203,8 @@ std::vector<Plane> candidate_planes(const TriMesh& m, const Topology& topo, cons
 	// Planes containing the retraction direction (the bridge's normal), at evenly spread angles
 	// starting from the notch edge's direction; and the plane parallel to the bridge.
 	if (rep.max_bridge >= 0) {
-		const Vec3 nb = sel == CutPlaneSelection::MinSection ? retraction(hull, p, rep.max_bridge)
-		                                                     : hull.facet_plane[rep.max_bridge].n;
+		const std::optional<Vec3> out_dir = sel == CutPlaneSelection::MinSection ? retraction(hull, p) : std::nullopt;
+		const Vec3                nb      = out_dir ? *out_dir : hull.facet_plane[rep.max_bridge].n;
 		Vec3       u  = edge - nb * nb.dot(edge);
 		if (u.norm() < 1e-9) u = nb.unitOrthogonal();
 		u.normalize();
@@ -564,10 +556,9 @@ Decomposition decompose_normalized(const Solid& solid, const DecomposeOptions& o
 		CutPlaneSelection sel = opt.cut_plane_selection;
 		if (hole < 0) {
 			notch = ms.surface(mesh).V[ms.rep.max_vertex];
-			// A notch on the hull itself (a prism's inner corner at its end face) has no way out to turn
-			// a neck's planes around: the paper's bisector it is.
-			if (sel == CutPlaneSelection::MinSection && ms.hull.distance_to_boundary(notch) <= 1e-9)
-				sel = CutPlaneSelection::Bisector;
+			// A notch on the hull itself has no way out to turn a neck's planes around: the paper's
+			// bisector it is.
+			if (sel == CutPlaneSelection::MinSection && !retraction(ms.hull, notch)) sel = CutPlaneSelection::Bisector;
 			planes = candidate_planes(ms.surface(mesh), ms.topo, ms.hull, ms.rep, sel, opt.candidate_planes);
 			if (sel == CutPlaneSelection::Bisector && planes.size() == 1) {
 				// Fall back to the other candidates only if the bisector cannot split.

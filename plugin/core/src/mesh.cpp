@@ -79,6 +79,23 @@ double extent(const std::vector<Vec3>& pts)
 	return 2 * std::sqrt(r2);
 }
 
+SurfaceMoments surface_moments(const TriMesh& m, const Vec3& o, const std::vector<int>* faces)
+{
+	SurfaceMoments mo;
+	Vec3           sum = Vec3::Zero();
+	const int      n   = faces ? (int) faces->size() : (int) m.F.size();
+	for (int i = 0; i < n; ++i) {
+		const Tri&   t = m.F[faces ? (*faces)[i] : i];
+		const Vec3   a = m.V[t[0]] - o, b = m.V[t[1]] - o, d = m.V[t[2]] - o;
+		const double w = 0.5 * (b - a).cross(d - a).norm();
+		mo.area += w;
+		sum += w * (a + b + d) / 3;
+		mo.second += w / 12 * (a * a.transpose() + b * b.transpose() + d * d.transpose() + (a + b + d) * (a + b + d).transpose());
+	}
+	if (mo.area > 0) mo.centroid = o + sum / mo.area;
+	return mo;
+}
+
 PoseFrame pose_frame(const TriMesh& m)
 {
 	// Area-weighted moments of the surface (triangle centroids): a property of the shape, not of

@@ -57,15 +57,22 @@ std::vector<double> crossings(const TriMesh& m, const Vec3& c, const Vec3& a)
 // Major principal axis of a closed surface's area about c.
 Vec3 principal_axis(const TriMesh& m, const Vec3& c)
 {
-	Eigen::Matrix3d M = Eigen::Matrix3d::Zero();
-	for (const Tri& t : m.F) {
-		const Vec3   a = m.V[t[0]] - c, b = m.V[t[1]] - c, d = m.V[t[2]] - c, s = a + b + d;
-		const double area = 0.5 * (b - a).cross(d - a).norm();
-		M += area / 12 * (a * a.transpose() + b * b.transpose() + d * d.transpose() + s * s.transpose());
-	}
-	Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es(M);   // ascending
+	Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es(surface_moments(m, c).second);   // ascending
 	return es.eigenvectors().col(2);
 }
+
+// Union-find over 0..n-1 (path halving).
+struct DisjointSets
+{
+	std::vector<int> parent;
+	explicit DisjointSets(size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), 0); }
+	int root(int x)
+	{
+		while (parent[x] != x) x = parent[x] = parent[parent[x]];
+		return x;
+	}
+	void unite(int a, int b) { parent[root(a)] = root(b); }
+};
 
 struct Piece
 {
@@ -173,16 +180,14 @@ struct Builder
 		const std::vector<CapFace> a = caps(pl, A, weld), b = caps(pl, B, weld);
 		if (a.empty()) return;
 		// connected components of A's cap faces through shared corners
-		std::vector<int> parent(weld.size());
-		std::iota(parent.begin(), parent.end(), 0);
-		auto root = [&](int x) {
-			while (parent[x] != x) x = parent[x] = parent[parent[x]];
-			return x;
-		};
-		for (const CapFace& f : a) parent[root(f.corner[0])] = parent[root(f.corner[2])] = root(f.corner[1]);
+		DisjointSets sets(weld.size());
+		for (const CapFace& f : a) {
+			sets.unite(f.corner[2], f.corner[1]);
+			sets.unite(f.corner[0], f.corner[1]);
+		}
 		std::map<int, std::pair<Vec3, double>> section;   // root -> (area-weighted centroid sum, area)
 		for (const CapFace& f : a) {
-			auto& [c, w] = section.try_emplace(root(f.corner[0]), Vec3::Zero(), 0.0).first->second;
+			auto& [c, w] = section.try_emplace(sets.root(f.corner[0]), Vec3::Zero(), 0.0).first->second;
 			c += f.area * f.centroid, w += f.area;
 		}
 		for (const auto& [r, cw] : section) {
@@ -194,7 +199,7 @@ struct Builder
 				int    pick = -1;
 				double dmin = HUGE_VAL;
 				for (const CapFace& f : *side)
-					if ((side == &b || root(f.corner[0]) == r) && (f.centroid - q).norm() < dmin)
+					if ((side == &b || sets.root(f.corner[0]) == r) && (f.centroid - q).norm() < dmin)
 						dmin = (f.centroid - q).norm(), pick = f.piece;
 				if (pick >= 0) pieces[pick].joints.push_back(jq);
 			}
@@ -254,15 +259,10 @@ struct Builder
 
 int Skeleton::components() const
 {
-	std::vector<int> parent(V.size());
-	std::iota(parent.begin(), parent.end(), 0);
-	auto root = [&](int x) {
-		while (parent[x] != x) x = parent[x] = parent[parent[x]];
-		return x;
-	};
-	for (const auto& e : E) parent[root(e[0])] = root(e[1]);
+	DisjointSets sets(V.size());
+	for (const auto& e : E) sets.unite(e[0], e[1]);
 	int n = 0;
-	for (int v = 0; v < (int) V.size(); ++v) n += root(v) == v;
+	for (int v = 0; v < (int) V.size(); ++v) n += sets.root(v) == v;
 	return n;
 }
 

@@ -79,6 +79,17 @@ struct PoseFrame
 };
 PoseFrame pose_frame(const TriMesh& m);
 
+// Area-weighted moments of a surface's faces (all, or those listed): their area, area centroid, and
+// second moment about `o` (the exact integral of (x - o)(x - o)^T over each triangle), which follow
+// the shape, not how densely its vertices sample it.
+struct SurfaceMoments
+{
+	double          area     = 0;
+	Vec3            centroid = Vec3::Zero();
+	Eigen::Matrix3d second   = Eigen::Matrix3d::Zero();
+};
+SurfaceMoments surface_moments(const TriMesh& m, const Vec3& o, const std::vector<int>* faces = nullptr);
+
 // Point-in-solid by ray parity (a closed mesh).
 bool inside(const TriMesh& m, const Vec3& p);
 
