@@ -177,3 +177,14 @@ def interior_samples(V, F, n, rng):
     pts = rng.uniform(lo, hi, size=(n * 6, 3))
     ins = inside(V, F, pts)
     return pts[ins][:n]
+
+
+def hull_within(V, F, tau_abs, label="part"):
+    """Assert the part's convex hull lies within tau of the part, measured independently
+    (tests/hull_reach.py: scipy's Qhull and exact point-triangle distances), with a slack of 1% of tau.
+    Returns the attained distance."""
+    from hull_reach import hull_reach
+    lower, upper = hull_reach(V, F, slack=0.01 * tau_abs, limit=tau_abs)
+    assert upper <= 1.01 * tau_abs * (1 + 1e-9), \
+        f"{label}: its hull lies {lower:.4g} from it (tau {tau_abs:.4g}, {lower / tau_abs:.2f} tau)"
+    return lower

@@ -1,7 +1,8 @@
 """generate_approximate_convex_decomposition through pymeshlab (issue 4).
 
 Every check is independent of the core's own report: volumes, closedness, overlap and concavity
-are measured again here (concavity through the separate concavity filter on each part).
+are measured again here (concavity through the separate concavity filter on each part, and each
+part's hull distance with scipy and numpy, sharing no code with the core).
 """
 import os
 
@@ -10,7 +11,7 @@ import pymeshlab
 import pytest
 
 import pymeshlab_acd
-from conftest import (BUNNY, L_SHAPE, PLUS, SHARED, U_SHAPE, add_mesh, extrude, inside,
+from conftest import (BUNNY, L_SHAPE, PLUS, SHARED, U_SHAPE, add_mesh, extrude, hull_within, inside,
                       interior_samples, is_closed_manifold, torus, volume)
 
 
@@ -37,6 +38,7 @@ def check_partition(ms, src_id, ids, tau_abs=None, overlap_samples=0, seed=0):
         total += vol
         if tau_abs is not None:
             assert remeasured_concavity(V, F) <= tau_abs * (1 + 1e-9), f"{label} exceeds tau"
+            hull_within(V, F, tau_abs, label)
     assert abs(total - v0) / v0 < 1e-6
     if overlap_samples:
         rng = np.random.default_rng(seed)

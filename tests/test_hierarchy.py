@@ -8,7 +8,7 @@ import pymeshlab
 import pytest
 
 import pymeshlab_acd
-from conftest import BUNNY, is_closed_manifold, torus, add_mesh, volume
+from conftest import BUNNY, add_mesh, hull_within, is_closed_manifold, torus, volume
 from test_decompose import remeasured_concavity
 
 
@@ -59,6 +59,7 @@ def test_coarser_levels_without_recomputing(ms, bunny_tree, coarse):
         total += volume(V, F)
         # the rebuilt part is the saved node's solid: its concavity re-measured is within tau'
         assert remeasured_concavity(V, F) <= tau_abs * (1 + 1e-6)
+        hull_within(V, F, tau_abs, ms.mesh(i).label())
     assert total == pytest.approx(v0, rel=1e-6)
     print(f"bunny tree at 3%: {res['parts']} parts; level at {coarse}%: {lod['parts']} parts, "
           f"{lod['time']:.2f} s (decomposition took {res['time']:.2f} s)")

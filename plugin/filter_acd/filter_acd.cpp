@@ -402,6 +402,7 @@ std::map<std::string, QVariant> FilterACD::notchConcavity(MeshModel& mm, vcg::Ca
 		{"pockets", r.pockets},
 		{"patches", r.patches},
 		{"max_concavity", r.max_concavity},
+		{"hull_distance", r.hull_reach},
 		{"max_concavity_position", QVariant::fromValue(Point3m(at.x(), at.y(), at.z()))},
 		{"max_concavity_x", at.x()},
 		{"max_concavity_y", at.y()},
@@ -511,8 +512,9 @@ FilterACD::decompose(const RichParameterList& par, MeshDocument& md, vcg::CallBa
 	}
 	const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 	const int    uncut = (int) std::count_if(d.nodes.begin(), d.nodes.end(), [](const acd::Node& n) { return n.uncut; });
-	log("Approximate convex decomposition: %d parts, tau %g (model units), max part concavity %g, %.2f s%s",
-	    idx, o.tau, d.max_leaf_concavity(), secs,
+	log("Approximate convex decomposition: %d parts, tau %g (model units), max part concavity %g, farthest "
+	    "hull %g from its part, %.2f s%s",
+	    idx, o.tau, d.max_leaf_concavity(), d.max_hull_distance(), secs,
 	    d.max_parts_reached ? " (max_parts reached: some parts exceed tau)" : "");
 	if (uncut > 0) log("Warning: %d parts above tau could not be cut by any candidate plane", uncut);
 	if (d.kept_cavities > 0)
@@ -535,7 +537,8 @@ FilterACD::decompose(const RichParameterList& par, MeshDocument& md, vcg::CallBa
 		{"cavities", s.cavities},
 		{"hole_cuts", d.hole_cuts},
 		{"kept_cavities", d.kept_cavities},
-		{"tau_convex", d.kept_cavities == 0 && d.max_leaf_concavity() <= o.tau},
+		{"max_hull_distance", d.max_hull_distance()},
+		{"tau_convex", d.tau_convex()},
 	};
 }
 

@@ -111,6 +111,8 @@ def decompose_file(src, out_dir, opts):
     m = ms.mesh(source)
     diag = float(np.linalg.norm(m.bounding_box().max() - m.bounding_box().min()))
     rec = dict(status="ok", parts=res["parts"], max_concavity=res["max_concavity"],
+               tau_model_units=res["tau_model_units"], max_hull_distance=res["max_hull_distance"],
+               tau_convex=res["tau_convex"],
                max_concavity_pct=100.0 * res["max_concavity"] / diag if diag > 0 else 0.0,
                hull_volume_ratio=a["ratio"], preprocessing=pre, faces=ms.mesh(source).face_number(),
                time=time.perf_counter() - t0, error=note, files=written, options_key=options_key(opts),

@@ -1,4 +1,5 @@
 #include "acd/concavity.h"
+#include "acd/hull_reach.h"
 #include "acd/parallel.h"
 
 #include <algorithm>
@@ -73,7 +74,7 @@ struct PathSearch
 
 } // namespace
 
-ConcavityReport measure_concavity(const TriMesh& m, const Topology& topo, const ConvexHull& hull)
+ConcavityReport measure_concavity(const TriMesh& m, const Topology& topo, const ConvexHull& hull, double tau)
 {
 	const int    nf   = (int) m.F.size();
 	const int    nv   = (int) m.V.size();
@@ -310,12 +311,14 @@ ConcavityReport measure_concavity(const TriMesh& m, const Topology& topo, const 
 	//    vertex order (a mirror-symmetric pair of notches would otherwise go either way).
 	r.frame                = pose_frame(m);
 	const PoseFrame& frame = r.frame;
+	std::vector<int> notch_vertices;
 	for (int f = 0; f < nf; ++f)
 		for (int k = 0; k < 3; ++k) {
 			const int g = topo.neighbour[f][k];
 			if (g < f || !is_reflex(m, topo, f, k)) continue;
 			++r.notches;
 			for (int v : {m.F[f][k], m.F[f][(k + 1) % 3]}) {
+				notch_vertices.push_back(v);
 				const double c = r.vertex_concavity[v];
 				if (!(c > 0) || v == r.max_vertex) continue;
 				const bool better = r.max_vertex < 0 || c > r.max_concavity + frame.tol ||
@@ -327,6 +330,32 @@ ConcavityReport measure_concavity(const TriMesh& m, const Topology& topo, const 
 				}
 			}
 		}
+
+	// 8. The bridges' reach: how far the hull lies from the surface across each bridge. Between the
+	//    vertices of a sparse pocket (a bore's wall, a slot's flank: every vertex on the hull) the
+	//    distances above see nothing, while the hull stands off the surface by the pocket's width.
+	//    The pocket's own concavity is at least that reach, so the farthest bridge point is charged
+	//    to the notch nearest to the surface point it faces, and that notch is cut next.
+	//    Within a decomposition it is refined only where it decides something: above the notches'
+	//    distances and tau (to 2%), and below tau to 1% of tau, which certifies the hull within tau.
+	const double    slack = tau > 0 ? 0.01 * tau : 1e-3 * diag;
+	const double    floor = r.max_concavity > tau ? 1.02 * r.max_concavity : tau;
+	const HullReach reach = hull_reach(m, hull, bridge, floor, slack, tau > 0 ? 0.02 : 0.002);
+	r.hull_reach           = reach.lower;
+	r.hull_reach_bound     = reach.upper;
+	if (reach.facet >= 0 && reach.lower > r.max_concavity + slack && !notch_vertices.empty()) {
+		int    v    = -1;
+		double best = 0;
+		for (int u : notch_vertices) {
+			const double d = (m.V[u] - reach.nearest).norm();
+			if (v < 0 || d < best - frame.tol || (d <= best + frame.tol && frame.before(m.V[u], m.V[v]))) best = d, v = u;
+		}
+		r.vertex_concavity[v] = std::max(r.vertex_concavity[v], reach.lower);
+		r.max_concavity       = reach.lower;
+		r.max_vertex          = v;
+		r.max_bridge          = reach.facet;
+		r.reach_cut           = true;
+	}
 	return r;
 }
 

@@ -86,10 +86,10 @@ struct Measured
 	Topology                      topo;
 	ConvexHull                    hull;
 	ConcavityReport               rep;
-	Measured(const TriMesh& m, bool keep_cavities)
+	Measured(const TriMesh& m, bool keep_cavities, double tau)
 	    : cavities(cavity_faces(m)),
 	      outer(keep_cavities && !cavities.empty() ? outer_surface(m, cavities) : TriMesh()),
-	      topo(surface(m)), hull(surface(m).V), rep(measure_concavity(surface(m), topo, hull))
+	      topo(surface(m)), hull(surface(m).V), rep(measure_concavity(surface(m), topo, hull, tau))
 	{
 	}
 	// What topo, hull and rep describe: the node's mesh `m` itself, or its outer surface. (The node's
@@ -98,9 +98,9 @@ struct Measured
 };
 
 // A candidate cut's parts scored by the paper's measure itself (the same one the recursion uses).
-double part_concavity(const TriMesh& m, bool keep_cavities)
+double part_concavity(const TriMesh& m, bool keep_cavities, double tau)
 {
-	return Measured(m, keep_cavities).rep.max_concavity;
+	return Measured(m, keep_cavities, tau).rep.max_concavity;
 }
 
 Plane through(const Vec3& p, Vec3 n)
@@ -234,6 +234,22 @@ double Decomposition::max_leaf_concavity() const
 	return c;
 }
 
+double Decomposition::max_hull_distance() const
+{
+	double c = 0;
+	for (int i : leaves()) c = std::max(c, nodes[i].hull_distance);
+	return c;
+}
+
+bool Decomposition::tau_convex() const
+{
+	for (int i : leaves()) {
+		const Node& n = nodes[i];
+		if (n.uncut || n.concavity > tau || n.hull_distance_bound > 1.01 * tau) return false;
+	}
+	return kept_cavities == 0 && !max_parts_reached && !time_limit_reached;
+}
+
 std::string Decomposition::to_json(bool geometry) const
 {
 	std::ostringstream o;
@@ -245,7 +261,8 @@ std::string Decomposition::to_json(bool geometry) const
 		const Node& n = nodes[i];
 		o << (i ? "," : "") << "{\"id\":" << i << ",\"path\":\"" << n.path << "\",\"parent\":" << n.parent
 		  << ",\"children\":[" << n.child[0] << "," << n.child[1] << "]"
-		  << ",\"concavity\":" << n.concavity << ",\"volume\":" << n.volume << ",\"notches\":" << n.notches
+		  << ",\"concavity\":" << n.concavity << ",\"hull_distance\":" << n.hull_distance
+		  << ",\"hull_distance_bound\":" << n.hull_distance_bound << ",\"volume\":" << n.volume << ",\"notches\":" << n.notches
 		  << ",\"leaf\":" << (n.leaf() ? "true" : "false") << ",\"uncut\":" << (n.uncut ? "true" : "false")
 		  << ",\"solids\":" << (n.solids ? "true" : "false") << ",\"cavities\":" << n.cavities
 		  << ",\"hole_cut\":" << (n.hole_cut ? "true" : "false");
@@ -421,6 +438,8 @@ Decomposition decompose(const Solid& solid, const DecomposeOptions& opt)
 	for (Node& n : D.nodes) {
 		for (Vec3& p : n.mesh.V) p = p * s + c;
 		n.concavity *= s;
+		n.hull_distance *= s;
+		n.hull_distance_bound *= s;
 		n.volume *= s * s * s;
 		n.notch = n.notch * s + c;
 		n.plane.d = n.plane.d * s + n.plane.n.dot(c);
@@ -453,8 +472,10 @@ Decomposition decompose_normalized(const Solid& solid, const DecomposeOptions& o
 	auto needs_cut = [&](const Node& n) { return n.concavity > opt.tau || (!keep && n.cavities > 0); };
 	auto measure_node = [&](int id) {
 		Node& n         = D.nodes[id];
-		auto  ms        = std::make_unique<Measured>(n.mesh, keep);
+		auto  ms        = std::make_unique<Measured>(n.mesh, keep, opt.tau);
 		n.concavity     = ms->rep.max_concavity;
+		n.hull_distance = ms->rep.hull_reach;
+		n.hull_distance_bound = ms->rep.hull_reach_bound;
 		n.volume        = signed_volume(n.mesh);
 		n.notches       = ms->rep.notches;
 		n.cavities      = (int) ms->cavities.size();
@@ -568,7 +589,7 @@ Decomposition decompose_normalized(const Solid& solid, const DecomposeOptions& o
 		}
 		else planes = cavity_planes(mesh, ms.cavities[hole], ms.hull, opt.hole_handling, opt.candidate_planes, notch);
 		// Try planes in order and keep the first that splits (the paper's planes), or score them all.
-		const bool first_fit  = hole >= 0 ? opt.hole_handling != HoleHandling::BestPlane : sel == CutPlaneSelection::Bisector;
+		bool       first_fit  = hole >= 0 ? opt.hole_handling != HoleHandling::BestPlane : sel == CutPlaneSelection::Bisector;
 		const bool by_section = hole < 0 && sel == CutPlaneSelection::MinSection;
 
 		// Split and score every candidate plane; candidates are independent, so use all cores.
@@ -581,8 +602,9 @@ Decomposition decompose_normalized(const Solid& solid, const DecomposeOptions& o
 		};
 		std::vector<Trial> trials(planes.size());
 		const double       v0 = D.nodes[id].volume;
-		auto               run_trial = [&](size_t i) {
+		auto               run_trial = [&](size_t i, bool score) {
             Trial& t = trials[i];
+            t        = Trial();
             if (!separate(mesh, planes[i], notch, t.so)) return;
             // A plane that grazes the part shaves off a sliver and resolves nothing.
             if (signed_volume(t.so.parts[0]) < 1e-5 * v0 || signed_volume(t.so.parts[1]) < 1e-5 * v0) return;
@@ -593,7 +615,7 @@ Decomposition decompose_normalized(const Solid& solid, const DecomposeOptions& o
                         for (int v : mesh.F[f]) (planes[i].eval(mesh.V[v]) > 0 ? pos : neg) = true;
                     t.crosses |= neg && pos;
                 }
-            if (first_fit) {
+            if (!score) {
                 t.ok = true;
                 return;
             }
@@ -603,7 +625,7 @@ Decomposition decompose_normalized(const Solid& solid, const DecomposeOptions& o
                 return;
             }
             try {
-                const double a = part_concavity(t.so.parts[0], keep), b = part_concavity(t.so.parts[1], keep);
+                const double a = part_concavity(t.so.parts[0], keep, opt.tau), b = part_concavity(t.so.parts[1], keep, opt.tau);
                 t.score = std::max(a, b);
                 t.sum   = a + b;
                 t.ok    = true;
@@ -611,14 +633,23 @@ Decomposition decompose_normalized(const Solid& solid, const DecomposeOptions& o
             catch (const Error&) {   // a part with no volume
             }
 		};
+		// A notch charged with its bridge's reach (no vertex shows that depth) has a dihedral angle that
+		// need not point across the reach: its plane stands unless it only shaves a tau-convex sliver
+		// off and leaves the rest about as concave.
+		const bool reach = hole < 0 && ms.rep.reach_cut;
 		if (first_fit) {
 			// The paper's plane first; the others only if it cannot split.
-			for (size_t i = 0; i < planes.size(); ++i) {
-				run_trial(i);
-				if (trials[i].ok && !trials[i].crosses) break;
+			int fit = -1;
+			for (size_t i = 0; i < planes.size() && fit < 0; ++i) {
+				run_trial(i, reach);
+				if (trials[i].ok && !trials[i].crosses) fit = (int) i;
 			}
+			const auto shaves = [&](const Trial& t) {
+				return t.sum - t.score <= opt.tau && t.score >= 0.9 * D.nodes[id].concavity;
+			};
+			if (reach && (fit < 0 || shaves(trials[fit]))) first_fit = false;
 		}
-		else parallel_for(planes.size(), run_trial);
+		if (!first_fit) parallel_for(planes.size(), [&](size_t i) { run_trial(i, true); });
 
 		// The paper's bisector plane (candidate 0) stands unless another leaves clearly (10%) less
 		// concavity: greedy scores alone would rather shave small arms off one by one. Among the
@@ -651,9 +682,20 @@ Decomposition decompose_normalized(const Solid& solid, const DecomposeOptions& o
 				const Vec3   axis = planes[0].n.cross(planes[1].n).normalized(), n = planes[pick].n;   // the fan's
 				planes.push_back(through(notch, std::cos(phi) * n + std::sin(phi) * axis.cross(n)));
 				trials.emplace_back();
-				run_trial(planes.size() - 1);
+				run_trial(planes.size() - 1, true);
 				if (trials.back().ok && !trials.back().crosses && trials.back().score < trials[pick].score)
 					pick = (int) planes.size() - 1;
+			}
+		}
+		// No candidate splits (the notch sits where every plane through it shaves a sliver): halve the
+		// part across its principal axes instead, so that it still shrinks towards tau.
+		if (pick < 0) {
+			const Vec3 centre = surface_moments(mesh, Vec3::Zero()).centroid;
+			for (int k = 0; k < 3 && pick < 0; ++k) {
+				planes.push_back(through(centre, ms.rep.frame.axes.row(k).transpose()));
+				trials.emplace_back();
+				run_trial(planes.size() - 1, false);
+				if (trials.back().ok) pick = (int) planes.size() - 1;
 			}
 		}
 		const bool   found = pick >= 0;

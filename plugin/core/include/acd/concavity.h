@@ -19,9 +19,15 @@ struct ConcavityReport
 	int    max_vertex    = -1;  // the most concave notch vertex (-1: no notch)
 	int    max_bridge    = -1;  // hull facet it retracts to
 	PoseFrame frame;            // the part's frame that settled ties (reused for the cut's ties)
+	double hull_reach = 0;        // largest distance from a bridge point to the surface found (see hull_reach.h)
+	double hull_reach_bound = 0;  // no bridge point lies farther from the surface
+	bool   reach_cut = false;     // max_concavity is the bridges' reach, charged to the nearest notch
 };
 
 // `m` must be a closed, edge-manifold, outward-oriented mesh (see make_solid) and `hull` its hull.
-ConcavityReport measure_concavity(const TriMesh& m, const Topology& topo, const ConvexHull& hull);
+// A part's concavity is the larger of its notches' distances to their bridges and the bridges' reach
+// beyond the surface, so it is never less than how far the part's hull stands off the part. With
+// `tau` > 0 (model units) the reach is refined only as far as deciding against tau needs.
+ConcavityReport measure_concavity(const TriMesh& m, const Topology& topo, const ConvexHull& hull, double tau = 0);
 
 } // namespace acd

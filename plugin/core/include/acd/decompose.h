@@ -53,7 +53,9 @@ struct Node
 	int         parent = -1;
 	int         child[2] = {-1, -1};
 	std::string path;              // "0" for the root, parent's path + '0'/'1' for children
-	double      concavity = 0;     // of this node's solid, the paper's measure
+	double      concavity = 0;     // of this node's solid: the paper's measure, at least the hull's reach
+	double      hull_distance = 0; // how far the node's hull reaches beyond it (attained; see hull_reach.h)
+	double      hull_distance_bound = 0;   // and no farther than this
 	double      volume = 0;
 	int         notches = 0;
 	Vec3        notch = Vec3::Zero();   // most concave notch (meaningful if concavity > 0)
@@ -78,6 +80,10 @@ struct Decomposition
 	// Leaves in a stable order (by tree path).
 	std::vector<int> leaves() const;
 	double           max_leaf_concavity() const;
+	double           max_hull_distance() const;   // over the leaves
+	// The certificate: every leaf within tau by both measures (its hull to 1% of tau), none left
+	// uncut, no cavity kept, no limit reached.
+	bool             tau_convex() const;
 	// The tree as JSON; with `geometry`, also each node's convex hull and each leaf's mesh (what
 	// level_of_detail and rebuild_solid need to serve coarser levels later without recomputing).
 	std::string to_json(bool geometry = false) const;
