@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# Benchmark against CoACD, V-HACD 4 and CGAL's ACD (see scripts/bench.py --help); with --rotation,
+# Benchmark against CoACD, V-HACD 4 and CGAL's ACD (see scripts/bench.py --help); with --robots, the
+# robot corpus with the certificate and the peers on a sample (scripts/bench_robots.py); with --rotation,
 # the pose-dependence table instead (scripts/bench_rotation.py); with --polygons, the 2D table against
 # CGAL's Partition_2 (scripts/bench_polygons.py). Installs what it needs on top of
 # scripts/setup.sh: the peers from PyPI and the C++ metric/peer tools.
@@ -14,6 +15,10 @@ if [ "${1:-}" = "--polygons" ]; then   # 2D: ours vs CGAL Partition_2 (no Python
 	exec python3 "$here/bench_polygons.py" "$@"
 fi
 cmake --build "$ACD_BUILD_DIR" --target acd_metrics cgal_acd_peer -- -j"$(nproc)" >/dev/null
+if [ "${1:-}" = "--robots" ]; then   # the example-robot-data corpus: ours on every mesh, the peers on a sample
+	shift
+	exec python3 "$here/bench_robots.py" "$@"
+fi
 if [ "${1:-}" = "--rotation" ]; then
 	shift
 	exec python3 "$here/bench_rotation.py" "$@"

@@ -31,10 +31,16 @@ for pv in tqdm:4.70.1 ray:2.60.0 mujoco:4.0.0 pybullet:3.2.7 trimesh:5.2.0 scipy
 done
 
 bash "$here/build_plugin.sh"
-# Reinstall the package when the plugin binary changed (or it is missing).
+# Reinstall the package when the plugin binary or its Python sources changed (or it is missing).
 built="$ACD_BUILD_DIR/filter_acd/libfilter_acd.so"
 installed="$("$PY" -c 'import importlib.util as u, os; s=u.find_spec("pymeshlab_acd"); print(os.path.join(os.path.dirname(s.origin), "lib", "libfilter_acd.so") if s else "")' 2>/dev/null || true)"
-if [ -z "$installed" ] || ! cmp -s "$built" "$installed"; then
+stale=0
+if [ -n "$installed" ]; then   # the package's Python sources changed since it was installed
+	for f in "$ACD_REPO"/pymeshlab_bindings/pymeshlab_acd/*.py; do
+		cmp -s "$f" "$(dirname "$(dirname "$installed")")/$(basename "$f")" || stale=1
+	done
+fi
+if [ -z "$installed" ] || [ $stale = 1 ] || ! cmp -s "$built" "$installed"; then
 	echo "[setup] pip install ./pymeshlab_bindings"
 	"$PY" -m pip install -q --no-build-isolation --force-reinstall --no-deps "$ACD_REPO/pymeshlab_bindings"
 fi
