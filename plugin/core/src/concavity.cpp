@@ -343,7 +343,10 @@ ConcavityReport measure_concavity(const TriMesh& m, const Topology& topo, const 
 	const HullReach reach = hull_reach(m, hull, bridge, floor, slack, tau > 0 ? 0.02 : 0.002);
 	r.hull_reach           = reach.lower;
 	r.hull_reach_bound     = reach.upper;
-	if (reach.facet >= 0 && reach.lower > r.max_concavity + slack && !notch_vertices.empty()) {
+	if (reach.facet >= 0 && reach.lower > r.max_concavity + slack) {
+		// Any vertex when no edge is reflex beyond rounding (a pocket of nearly flat folds).
+		if (notch_vertices.empty())
+			for (int u = 0; u < nv; ++u) notch_vertices.push_back(u);
 		int    v    = -1;
 		double best = 0;
 		for (int u : notch_vertices) {

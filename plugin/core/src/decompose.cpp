@@ -245,7 +245,8 @@ bool Decomposition::tau_convex() const
 {
 	for (int i : leaves()) {
 		const Node& n = nodes[i];
-		if (n.uncut || n.concavity > tau || n.hull_distance_bound > 1.01 * tau) return false;
+		// 1% of tau is the slack the reach is refined to; the rest is rounding.
+		if (n.uncut || n.concavity > tau || n.hull_distance_bound > 1.01 * tau * (1 + 1e-9)) return false;
 	}
 	return kept_cavities == 0 && !max_parts_reached && !time_limit_reached;
 }

@@ -73,8 +73,8 @@ HullReach hull_reach(const TriMesh& m, const ConvexHull& hull, const std::vector
 		const double longest = std::max({(hull.points[T[0]] - hull.points[T[1]]).norm(),
 		                                 (hull.points[T[1]] - hull.points[T[2]]).norm(),
 		                                 (hull.points[T[2]] - hull.points[T[0]]).norm()});
-		out.upper = std::max(out.upper, std::min(longest / std::sqrt(3.0), floor + slack));
 		if (longest / std::sqrt(3.0) > floor + slack) open.push_back(t);
+		else out.upper = std::max(out.upper, longest / std::sqrt(3.0));
 	}
 	if (open.empty()) return out;
 
