@@ -336,14 +336,19 @@ ConcavityReport measure_concavity(const TriMesh& m, const Topology& topo, const 
 	//    distances above see nothing, while the hull stands off the surface by the pocket's width.
 	//    The pocket's own concavity is at least that reach, so the farthest bridge point is charged
 	//    to the notch nearest to the surface point it faces, and that notch is cut next.
-	//    Within a decomposition it is refined only where it decides something: above the notches'
-	//    distances and tau (to 2%), and below tau to 1% of tau, which certifies the hull within tau.
-	const double    slack = tau > 0 ? 0.01 * tau : 1e-3 * diag;
-	const double    floor = r.max_concavity > tau ? 1.02 * r.max_concavity : tau;
+	//    In a decomposition the reach decides only for a part its notches call tau-convex (a part
+	//    over tau is cut at its notches anyway; letting the reach compete there would let the
+	//    refinement's rounding, which follows the pose, pick the notch). It is refined to 1% of tau
+	//    below tau, which certifies the hull within tau, and to 2% above.
+	const double slack = tau > 0 ? 0.01 * tau : 1e-3 * diag;
+	if (tau > 0 && r.max_concavity > tau) return r;
+	const double    floor = tau > 0 ? tau : r.max_concavity;
 	const HullReach reach = hull_reach(m, hull, bridge, floor, slack, tau > 0 ? 0.02 : 0.002);
 	r.hull_reach           = reach.lower;
 	r.hull_reach_bound     = reach.upper;
-	if (reach.facet >= 0 && reach.lower > r.max_concavity + slack) {
+	// Over when not certified within tau (+ slack); for the measure alone, when it exceeds the notches.
+	const bool over = tau > 0 ? reach.upper > floor + slack : reach.lower > floor + slack;
+	if (reach.facet >= 0 && over) {
 		// Any vertex when no edge is reflex beyond rounding (a pocket of nearly flat folds).
 		if (notch_vertices.empty())
 			for (int u = 0; u < nv; ++u) notch_vertices.push_back(u);
@@ -353,8 +358,10 @@ ConcavityReport measure_concavity(const TriMesh& m, const Topology& topo, const 
 			const double d = (m.V[u] - reach.nearest).norm();
 			if (v < 0 || d < best - frame.tol || (d <= best + frame.tol && frame.before(m.V[u], m.V[v]))) best = d, v = u;
 		}
-		r.vertex_concavity[v] = std::max(r.vertex_concavity[v], reach.lower);
-		r.max_concavity       = reach.lower;
+		// Not certified is over tau, even where the search stopped below it (its work bound).
+		const double c        = std::max(reach.lower, tau > 0 ? std::nextafter(floor, 2 * floor) : 0.0);
+		r.vertex_concavity[v] = std::max(r.vertex_concavity[v], c);
+		r.max_concavity       = c;
 		r.max_vertex          = v;
 		r.max_bridge          = reach.facet;
 		r.reach_cut           = true;
