@@ -10,25 +10,31 @@ import numpy as np
 from scipy.spatial import ConvexHull
 
 
-def point_surface_distance(P, V, F, chunk=2048):
-    """Exact distance from each point of P to the triangle surface (V, F), and the nearest face."""
+def point_surface_distance(P, V, F):
+    """Exact distance from each point of P to the triangle surface (V, F), and the nearest face.
+    Candidate faces come from a k-d tree of face centres: a face can only be the nearest if its
+    bounding sphere reaches within the best upper bound found among the nearest centres."""
+    from scipy.spatial import cKDTree
     P = np.atleast_2d(np.asarray(P, float))
     A, B, C = V[F[:, 0]], V[F[:, 1]], V[F[:, 2]]
     centre = (A + B + C) / 3
     radius = np.sqrt(np.max([((X - centre) ** 2).sum(1) for X in (A, B, C)], axis=0))
+    tree = cKDTree(centre)
+    k = min(8, len(F))
+    dk, ik = tree.query(P, k=k)
+    dk, ik = dk.reshape(len(P), k), ik.reshape(len(P), k)
+    ub = (dk + radius[ik]).min(1)
+    near = tree.query_ball_point(P, ub + radius.max())
+    rows = np.repeat(np.arange(len(P)), [len(n) for n in near])
+    cols = np.fromiter((c for n in near for c in n), np.int64, len(rows))
+    keep = np.sqrt(((P[rows] - centre[cols]) ** 2).sum(1)) - radius[cols] <= ub[rows]
+    rows, cols = rows[keep], cols[keep]
+    d = _point_triangle(P[rows], A[cols], B[cols], C[cols])
+    order = np.lexsort((d, rows))   # by point, nearest first
+    first = order[np.r_[True, rows[order][1:] != rows[order][:-1]]]
     dist, face = np.empty(len(P)), np.empty(len(P), np.int64)
-    for s in range(0, len(P), chunk):
-        p = P[s:s + chunk]
-        dc = np.sqrt(((p[:, None, :] - centre[None]) ** 2).sum(-1))   # (n, m)
-        # A triangle can only be the nearest if its bounding sphere is within reach of the best
-        # upper bound: prune the rest before the exact test.
-        ub = (dc + radius).min(1)
-        rows, cols = np.nonzero(dc - radius <= ub[:, None])
-        d = _point_triangle(p[rows], A[cols], B[cols], C[cols])
-        order = np.lexsort((d, rows))   # by point, nearest first
-        first = order[np.r_[True, rows[order][1:] != rows[order][:-1]]]
-        dist[s + rows[first]] = d[first]
-        face[s + rows[first]] = cols[first]
+    dist[rows[first]] = d[first]
+    face[rows[first]] = cols[first]
     return dist, face
 
 
