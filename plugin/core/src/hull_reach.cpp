@@ -6,7 +6,6 @@
 #include <CGAL/Simple_cartesian.h>
 
 #include <cmath>
-#include <optional>
 #include <queue>
 
 namespace acd {
