@@ -13,6 +13,7 @@
 #include <acd/polygon.h>
 #include <acd/skeleton.h>
 #include <acd/preprocess.h>
+#include <acd/wrap_solid.h>
 
 #include <vcg/complex/algorithms/update/color.h>
 
@@ -32,7 +33,7 @@ namespace {
 const QStringList kCutLineLabels  = {"best", "bisector"};
 const QStringList kCutPlaneLabels = {"best", "bisector", "min_section"};
 const QStringList kTauUnitLabels  = {"percent_of_size", "model_units"};
-const QStringList kPreprocessingLabels = {"none", "alpha_wrap"};
+const QStringList kPreprocessingLabels = {"none", "alpha_wrap", "auto"};
 const QStringList kSelfIntersectionLabels = {"warn", "refuse"};
 const QStringList kHoleHandlingLabels = {"best_plane", "principal_plane", "keep_cavities"};
 const QStringList kHoleOrderLabels    = {"first", "by_concavity"};
@@ -47,6 +48,7 @@ QString self_intersection_message(long n)
 // Bytes the decomposition needs per input face at most (measured: 631 MB for 1.07M faces in
 // bisector mode, including pymeshlab's own copy; best mode keeps more candidates alive).
 constexpr double kBytesPerFace = 1500;
+constexpr double kAutoMaxAlpha = 16;   // % of size: the coarsest wrap preprocessing = auto tries
 
 // Memory the system can still give us (Linux: MemAvailable; elsewhere free pages), 0 if unknown.
 double available_memory()
@@ -306,7 +308,9 @@ RichParameterList FilterACD::initParameterList(const QAction* a, const MeshModel
 		"none: the mesh must be a closed, 2-manifold, oriented solid that does not intersect itself; "
 		"alpha_wrap: first wrap it with CGAL's 3D alpha wrapping, which turns open, non-manifold, "
 		"self-intersecting meshes, triangle soups and point clouds into one closed solid (the parts "
-		"then decompose the wrap, which lies about wrap_offset outside the input)."));
+		"then decompose the wrap, which lies about wrap_offset outside the input); auto: as given when "
+		"it is a valid solid, else alpha wrapped, doubling alpha (up to 16%) while the wrap is a hollow "
+		"skin that slipped inside through the mesh's holes."));
 	p.addParam(RichFloat(
 		"wrap_alpha", 1.0, "Alpha wrap: alpha (%)",
 		"With alpha_wrap: gaps, holes and cavities narrower than about this are closed, as a "
@@ -422,17 +426,31 @@ FilterACD::Run FilterACD::runDecomposition(const RichParameterList& par, MeshMod
 		                      .arg(raw.F.size())
 		                      .arg(kBytesPerFace * raw.F.size() / 1e6, 0, 'f', 0)
 		                      .arg(avail / 1e6, 0, 'f', 0));
-	if (par.getEnum("preprocessing") == 1) {
+	double wrapped_alpha = 0;
+	if (par.getEnum("preprocessing") != 0) {
 		std::vector<acd::Vec3> finite;
 		for (const acd::Vec3& p : raw.V)
 			if (p.allFinite()) finite.push_back(p);
 		if (finite.empty()) throw MLException("The mesh has no vertex with finite coordinates.");
-		const double d0 = acd::enclosing_diameter(finite);
+		const double d0 = acd::enclosing_diameter(finite), alpha = par.getFloat("wrap_alpha");
+		const double offset = par.getFloat("wrap_offset") / 100 * d0;
 		if (cb) cb(0, "Alpha wrapping the input...");
 		const size_t before = raw.F.size();
-		raw = acd::alpha_wrap(raw, par.getFloat("wrap_alpha") / 100 * d0, par.getFloat("wrap_offset") / 100 * d0);
-		log("Alpha wrap: %zu faces in, %zu out; the wrap lies about %g outside the input (alpha %g)", before,
-		    raw.F.size(), par.getFloat("wrap_offset") / 100 * d0, par.getFloat("wrap_alpha") / 100 * d0);
+		if (par.getEnum("preprocessing") == 1) {
+			raw           = acd::alpha_wrap(raw, alpha / 100 * d0, offset);
+			wrapped_alpha = alpha;
+		} else {
+			acd::WrapSolidResult w = acd::wrap_solid(raw, alpha / 100 * d0, offset, kAutoMaxAlpha / 100 * d0);
+			if (w.wrapped) {
+				log("Not decomposable as given (%s) It is alpha wrapped: %d wrap(s), alpha %g%% kept, holding "
+				    "%.0f%% of the input's interior.", w.reason.c_str(), w.tries, w.alpha / d0 * 100, 100 * w.inside);
+				raw           = std::move(w.mesh);
+				wrapped_alpha = w.alpha / d0 * 100;
+			}
+		}
+		if (wrapped_alpha > 0)
+			log("Alpha wrap: %zu faces in, %zu out; the wrap lies about %g outside the input (alpha %g)", before,
+			    raw.F.size(), offset, wrapped_alpha / 100 * d0);
 	}
 	acd::Solid s = acd::make_solid(raw);
 	if (s.self_intersections > 0) {
@@ -465,7 +483,7 @@ FilterACD::Run FilterACD::runDecomposition(const RichParameterList& par, MeshMod
 	if (s.unreferenced_vertices > 0) log("%d unreferenced vertices were ignored.", s.unreferenced_vertices);
 	if (s.split_vertices > 0) log("%d non-manifold vertices were split into one copy per fan.", s.split_vertices);
 	acd::Decomposition d = acd::decompose(s, o);
-	return {std::move(s), o, size, std::move(d)};
+	return {std::move(s), o, size, std::move(d), wrapped_alpha};
 }
 
 std::map<std::string, QVariant>
@@ -532,7 +550,8 @@ FilterACD::decompose(const RichParameterList& par, MeshDocument& md, vcg::CallBa
 		{"time_limit_reached", d.time_limit_reached},
 		{"uncut_parts", uncut},
 		{"tree_nodes", (int) d.nodes.size()},
-		{"alpha_wrapped", par.getEnum("preprocessing") == 1},
+		{"alpha_wrapped", run.wrap_alpha > 0},
+		{"wrap_alpha_used", run.wrap_alpha},
 		{"self_intersections", (int) s.self_intersections},
 		{"cavities", s.cavities},
 		{"hole_cuts", d.hole_cuts},

@@ -47,6 +47,7 @@ private:
 		acd::DecomposeOptions options;
 		double                size = 0;
 		acd::Decomposition    d;
+		double                wrap_alpha = 0;   // the alpha wrap's alpha (% of size); 0: not wrapped
 	};
 	Run runDecomposition(const RichParameterList& par, MeshModel& input, vcg::CallBackPos* cb);
 	std::map<std::string, QVariant> notchConcavity(MeshModel& m, vcg::CallBackPos* cb);

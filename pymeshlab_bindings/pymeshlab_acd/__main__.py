@@ -253,8 +253,9 @@ def main(argv=None):
     d.add_argument("--hulls", action="store_true", help="also output each part's convex hull")
     d.add_argument("--max-hull-vertices", type=int, default=0)
     d.add_argument("--time-limit", type=float, default=0.0)
-    d.add_argument("--preprocessing", default="none", choices=["none", "alpha_wrap"],
-                   help="alpha_wrap: wrap dirty input (open, non-manifold, self-intersecting, points) first")
+    d.add_argument("--preprocessing", default="none", choices=["none", "alpha_wrap", "auto"],
+                   help="alpha_wrap: wrap dirty input (open, non-manifold, self-intersecting, points) first; "
+                        "auto: as given if it is a valid solid, else wrapped (alpha doubled while the wrap is hollow)")
     d.add_argument("--wrap-alpha", type=float, default=1.0, help="alpha wrap: alpha, %% of size")
     d.add_argument("--wrap-offset", type=float, default=0.1, help="alpha wrap: offset, %% of size")
     d.add_argument("--on-self-intersection", default="warn", choices=["warn", "refuse"])

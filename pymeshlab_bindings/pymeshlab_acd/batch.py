@@ -28,7 +28,6 @@ DEFAULTS = dict(tau=3.0, tau_unit="percent_of_size", cut_plane_selection="best",
 _OUTPUT_KEYS = ("tau", "tau_unit", "cut_plane_selection", "max_parts", "max_hull_vertices", "preprocessing",
                 "wrap_alpha", "wrap_offset", "time_limit", "formats", "scale", "density", "save_tree")
 
-HOLLOW_RATIO = 1.5   # hull volume / solid volume above which a wrap is taken to be hollow
 
 SUMMARY_FIELDS = ("file", "status", "parts", "max_concavity", "max_concavity_pct", "hull_volume_ratio",
                   "preprocessing", "faces", "time", "worker", "error", "output")
@@ -92,14 +91,10 @@ def decompose_file(src, out_dir, opts):
         try:
             a, pre = attempt("none", opts["wrap_alpha"]), "none"
         except pymeshlab.PyMeshLabException as e:
-            # Open, non-manifold or otherwise unusable as given: wrap it into a closed solid. A wrap that
-            # slipped through the mesh's holes is a hollow shell, whose hulls hold far more than its
-            # volume: wrap again with a doubled alpha (up to 16% of size) and keep the least hollow.
-            tries = [attempt("alpha_wrap", opts["wrap_alpha"])]
-            while tries[-1]["ratio"] > HOLLOW_RATIO and tries[-1]["alpha"] * 2 <= 16.0:
-                tries.append(attempt("alpha_wrap", tries[-1]["alpha"] * 2))
-            a = min(tries, key=lambda t: t["ratio"])
-            pre = f"alpha_wrap {a['alpha']:g}%"
+            # Open, non-manifold or otherwise unusable as given: the filter's `auto` wraps it into a
+            # closed solid, doubling alpha (up to 16% of size) while the wrap is a hollow skin.
+            a = attempt("auto", opts["wrap_alpha"])
+            pre = f"alpha_wrap {a['res']['wrap_alpha_used']:.3g}%"
             note = f"wrapped: as given, {_reason(e)}"
     ms, source, res, parts, hulls = a["ms"], a["source"], a["res"], a["parts"], a["hulls"]
     if opts["save_tree"]:   # the chosen attempt's tree, for coarser levels later

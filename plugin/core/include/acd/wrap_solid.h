@@ -1,0 +1,32 @@
+// Automatic preprocessing: the input as given when it is a valid solid, otherwise the least alpha wrap
+// that is solid rather than a hollow skin.
+#pragma once
+
+#include "acd/mesh.h"
+
+#include <string>
+
+namespace acd {
+
+struct WrapSolidResult
+{
+	TriMesh     mesh;               // the wrap (or the input, when `wrapped` is false)
+	bool        wrapped = false;
+	double      alpha   = 0;        // the alpha of the wrap kept (model units)
+	double      inside  = 1;        // share of the input's interior samples inside the wrap kept
+	int         tries   = 0;        // wraps computed
+	std::string reason;             // why the input was not used as given
+};
+
+// Generalized winding number of the surface (V, F) at each point: about 1 inside a closed outward
+// surface, 0 outside, and still close to that for a surface with small holes.
+std::vector<double> winding_numbers(const TriMesh& surface, const std::vector<Vec3>& points);
+
+// An open mesh wrapped with an alpha smaller than its holes is a thin skin hugging both sides of the
+// surface (the wrap slipped inside). Wraps with alpha, 2 alpha, ... up to max_alpha, and keeps the first
+// that holds at least `min_inside` of the points the input's winding number places inside (or the one
+// holding the most). The input is returned as given when make_solid accepts it.
+WrapSolidResult wrap_solid(const TriMesh& input, double alpha, double offset, double max_alpha,
+                           double min_inside = 0.5);
+
+} // namespace acd
