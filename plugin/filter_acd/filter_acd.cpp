@@ -80,6 +80,8 @@ template <class Fn> auto guarded(Fn fn) -> decltype(fn())
 		throw MLException("Out of memory during the convex decomposition.");
 	}
 	catch (const acd::Error& e) {
+		if (e.kind == acd::Error::Internal)
+			throw MLException(QString("Internal error in the convex decomposition: ") + e.what());
 		throw MLException(QString::fromStdString(e.what()));
 	}
 	catch (const std::exception& e) {
@@ -310,7 +312,8 @@ RichParameterList FilterACD::initParameterList(const QAction* a, const MeshModel
 		"self-intersecting meshes, triangle soups and point clouds into one closed solid (the parts "
 		"then decompose the wrap, which lies about wrap_offset outside the input); auto: as given when "
 		"it is a valid solid, else alpha wrapped, doubling alpha (up to 16%) while the wrap is a hollow "
-		"skin that slipped inside through the mesh's holes."));
+		"skin that slipped inside through small holes; an open shell that no such wrap fills keeps the "
+		"first wrap, its skin."));
 	p.addParam(RichFloat(
 		"wrap_alpha", 1.0, "Alpha wrap: alpha (%)",
 		"With alpha_wrap: gaps, holes and cavities narrower than about this are closed, as a "

@@ -79,16 +79,17 @@ WrapSolidResult wrap_solid(const TriMesh& input, double alpha, double offset, do
 		r.reason = e.what();
 	}
 	// Too few interior samples (a point cloud, a sheet, faces that cancel) cannot tell a skin from a
-	// solid: the first wrap is kept.
+	// solid: the first wrap is kept. So is it when no wrap up to max_alpha holds the interior: the
+	// input is then an open shell (a cover, a fairing) rather than a solid with small holes, and its
+	// faithful skin is nearer to it than any coarse blob.
 	const std::vector<Vec3> inside = interior_samples(input, 512);
 	const bool              judge  = inside.size() >= 16;
 	r.wrapped = true;
-	r.inside  = -1;
 	for (double a = alpha;; a *= 2) {
 		TriMesh      w     = alpha_wrap(input, a, offset);
 		const double share = judge ? share_inside(w, inside) : 1.0;
 		++r.tries;
-		if (share > r.inside) r = WrapSolidResult{std::move(w), true, a, share, r.tries, r.reason};
+		if (r.tries == 1 || share >= min_inside) r = WrapSolidResult{std::move(w), true, a, share, r.tries, r.reason};
 		if (share >= min_inside || a * 2 > max_alpha * (1 + 1e-9)) break;
 	}
 	return r;

@@ -1,5 +1,5 @@
 // Automatic preprocessing: the input as given when it is a valid solid, otherwise the least alpha wrap
-// that is solid rather than a hollow skin.
+// that is solid rather than a hollow skin (or the first wrap, when the input encloses no solid).
 #pragma once
 
 #include "acd/mesh.h"
@@ -14,7 +14,7 @@ struct WrapSolidResult
 	bool        wrapped = false;
 	double      alpha   = 0;        // the alpha of the wrap kept (model units)
 	double      inside  = 1;        // share of the input's interior samples inside the wrap kept
-	int         tries   = 0;        // wraps computed
+	int         tries   = 0;        // wraps computed (the last one is not always the one kept)
 	std::string reason;             // why the input was not used as given
 };
 
@@ -24,8 +24,9 @@ std::vector<double> winding_numbers(const TriMesh& surface, const std::vector<Ve
 
 // An open mesh wrapped with an alpha smaller than its holes is a thin skin hugging both sides of the
 // surface (the wrap slipped inside). Wraps with alpha, 2 alpha, ... up to max_alpha, and keeps the first
-// that holds at least `min_inside` of the points the input's winding number places inside (or the one
-// holding the most). The input is returned as given when make_solid accepts it.
+// that holds at least `min_inside` of the points the input's winding number places inside; when none
+// does, the input is an open shell and the first wrap, its skin, is kept. The input is returned as
+// given when make_solid accepts it.
 WrapSolidResult wrap_solid(const TriMesh& input, double alpha, double offset, double max_alpha,
                            double min_inside = 0.5);
 
