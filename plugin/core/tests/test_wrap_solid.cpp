@@ -22,7 +22,7 @@ ACD_TEST(winding_number_is_one_inside_zero_outside_and_signed_by_orientation)
 ACD_TEST(a_valid_solid_is_returned_as_given)
 {
 	const TriMesh         b = shapes::box(Vec3(0, 0, 0), Vec3(2, 1, 1));
-	const WrapSolidResult r = wrap_solid(b, 0.02, 0.002, 0.32);
+	const WrapSolidResult r = wrap_solid(b, 0.05, 0.005, 0.4);
 	CHECK(!r.wrapped);
 	CHECK(r.tries == 0);
 	CHECK(r.mesh.F.size() == b.F.size());
@@ -30,23 +30,37 @@ ACD_TEST(a_valid_solid_is_returned_as_given)
 
 ACD_TEST(a_sphere_with_a_small_hole_is_wrapped_solid_not_as_a_skin)
 {
-	// Faces around the north pole removed: a hole about 0.28 across in a sphere of diameter 2. A 1%
-	// wrap slips through it and hugs both sides of the surface; a coarser wrap closes it.
+	// Faces around the north pole removed: a hole about 0.28 across in a sphere of diameter 2. A wrap
+	// with alpha 0.05 slips through it and hugs both sides of the surface; a coarser wrap closes it.
 	TriMesh s = shapes::sphere(3, 1.0), open;
 	open.V = s.V;
 	for (const Tri& t : s.F)
 		if ((s.V[t[0]] + s.V[t[1]] + s.V[t[2]]).z() / 3 < 0.99) open.F.push_back(t);
 	CHECK(open.F.size() < s.F.size());
-	const double skin = signed_volume(alpha_wrap(open, 0.02, 0.002));
+	const double skin = signed_volume(alpha_wrap(open, 0.05, 0.005));
 	const double ball = 4.0 / 3.0 * M_PI;
 	CHECK(skin < 0.2 * ball);
 
-	const WrapSolidResult r = wrap_solid(open, 0.02, 0.002, 0.32);
+	const WrapSolidResult r = wrap_solid(open, 0.05, 0.005, 0.4);
 	CHECK(r.wrapped);
 	CHECK(r.tries >= 2);
-	CHECK(r.alpha > 0.02);
+	CHECK(r.alpha > 0.05);
 	CHECK(r.inside >= 0.5);
 	CHECK(!r.reason.empty());
 	CHECK(signed_volume(r.mesh) > 0.8 * ball);
 	CHECK(make_solid(r.mesh).mesh.F.size() == r.mesh.F.size());
+}
+
+ACD_TEST(an_open_shell_no_wrap_fills_keeps_its_skin)
+{
+	// A hemisphere encloses nothing: no alpha recovers an interior, and the first wrap (the skin, a
+	// thin closed sheet about the surface) is kept rather than a coarse blob.
+	TriMesh s = shapes::sphere(3, 1.0), cup;
+	cup.V = s.V;
+	for (const Tri& t : s.F)
+		if ((s.V[t[0]] + s.V[t[1]] + s.V[t[2]]).z() < 0) cup.F.push_back(t);
+	const WrapSolidResult r = wrap_solid(cup, 0.05, 0.005, 0.4);
+	CHECK(r.wrapped);
+	CHECK(r.alpha == 0.05);
+	CHECK(signed_volume(r.mesh) < 0.1 * (2.0 / 3.0 * M_PI));
 }
