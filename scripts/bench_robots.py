@@ -231,15 +231,19 @@ def summarize(rows, meshes):
         out.append(f"Every method on the {len(keyed)}-mesh sample (medians over the meshes each method "
                    "decomposed; time summed):")
         out.append("")
-        out.append("| method | setting | median hulls | median hull error (% diag) | total time (s) | failures |")
-        out.append("|---|---|---|---|---|---|")
+        out.append("| method | setting | median hulls | median hull error (% diag) | median outside / inside "
+                   "(% diag, closed inputs) | total time (s) | failures |")
+        out.append("|---|---|---|---|---|---|---|")
         for key in [OURS] + [(m, l) for m, l, _ in PEERS]:
             rs = [d.get(key) for d in keyed.values()]
             good = [r for r in rs if r and "error" not in r]
             med = lambda xs: sorted(xs)[len(xs) // 2] if xs else float("nan")
+            split = [r for r in good if r.get("hull_error_outside") is not None]
             out.append(f"| {key[0]} | {key[1]} | {med([r['hulls'] for r in good])} | "
-                       f"{100 * med([r['hull_error'] for r in good]):.2f} | {sum(r['time'] for r in good):.0f} | "
-                       f"{len(rs) - len(good)} |")
+                       f"{100 * med([r['hull_error'] for r in good]):.2f} | "
+                       f"{100 * med([r['hull_error_outside'] for r in split]):.2f} / "
+                       f"{100 * med([r['hull_error_inside'] for r in split]):.2f} ({len(split)}) | "
+                       f"{sum(r['time'] for r in good):.0f} | {len(rs) - len(good)} |")
     return out
 
 

@@ -6,6 +6,9 @@
 //               (area-uniform samples on each hull, dropping those inside or on another hull, such
 //               as the shared faces of two parts cut by one plane), as a
 //               fraction of the input's bounding-box diagonal; hull_error_mean likewise.
+//   hull_error_outside, hull_error_inside: the same samples split by the side of the input they lie
+//               on (closed input only, else null): how far the hulls reach out of the solid (false
+//               contacts) and how deep the union's boundary lies inside it (gaps between hulls).
 //   iou:        volume IoU of the union of hulls and the input solid, by uniform Monte Carlo samples
 //               in the common bounding box; iou_stderr its standard error. null if the input is not closed.
 #include "acd/hull.h"
@@ -21,6 +24,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <optional>
 #include <random>
 
 using K     = CGAL::Exact_predicates_inexact_constructions_kernel;
@@ -101,7 +105,9 @@ int main(int argc, char** argv)
 				cum.push_back(total);
 			}
 		const double tol = 1e-5 * diag;   // shared cut faces of two hulls agree to rounding, not exactly
-		double       emax = 0, esum = 0;
+		std::optional<CGAL::Side_of_triangle_mesh<SMesh, K>> side;
+		if (closed) side.emplace(tree);
+		double       emax = 0, esum = 0, out_max = 0, in_max = 0;
 		acd::Vec3    at = acd::Vec3::Zero();
 		int          at_hull = -1;
 		long         kept = 0;
@@ -117,8 +123,13 @@ int main(int argc, char** argv)
 			for (int j = 0; j < (int) hulls.size() && !covered; ++j)
 				covered = j != i && hulls[j].covers(x, tol);
 			if (covered) continue;
-			const double d = std::sqrt(tree.squared_distance(K::Point_3(x.x(), x.y(), x.z())));
+			const K::Point_3 q(x.x(), x.y(), x.z());
+			const double     d = std::sqrt(tree.squared_distance(q));
 			if (d > emax) emax = d, at = x, at_hull = i;
+			if (side) {
+				double& m = (*side)(q) == CGAL::ON_BOUNDED_SIDE ? in_max : out_max;
+				m         = std::max(m, d);
+			}
 			esum += d;
 			++kept;
 		}
@@ -126,11 +137,10 @@ int main(int argc, char** argv)
 		Eigen::AlignedBox3d box = ibox;
 		for (const Hull& h : hulls) box.extend(h.box);
 		long both = 0, either = 0;
-		if (closed) {
-			CGAL::Side_of_triangle_mesh<SMesh, K> side(tree);
+		if (side) {
 			for (long s = 0; s < samples; ++s) {
 				const acd::Vec3 x = box.min() + box.sizes().cwiseProduct(acd::Vec3(U(rng), U(rng), U(rng)));
-				const bool in_solid = side(K::Point_3(x.x(), x.y(), x.z())) != CGAL::ON_UNBOUNDED_SIDE;
+				const bool in_solid = (*side)(K::Point_3(x.x(), x.y(), x.z())) != CGAL::ON_UNBOUNDED_SIDE;
 				bool       in_hulls = false;
 				for (const Hull& h : hulls)
 					if ((in_hulls = h.contains(x))) break;
@@ -141,6 +151,8 @@ int main(int argc, char** argv)
 		std::printf("{\"hulls\": %zu, \"degenerate_hulls\": %d, \"hull_error\": %.6g, \"hull_error_mean\": %.6g, "
 		            "\"surface_samples\": %ld, \"hull_error_at\": [%.17g, %.17g, %.17g], \"hull_error_hull\": %d, ",
 		            hulls.size(), degenerate, emax / diag, kept ? esum / kept / diag : 0.0, kept, at.x(), at.y(), at.z(), at_hull);
+		if (side) std::printf("\"hull_error_outside\": %.6g, \"hull_error_inside\": %.6g, ", out_max / diag, in_max / diag);
+		else std::printf("\"hull_error_outside\": null, \"hull_error_inside\": null, ");
 		if (closed && either > 0) {
 			const double p = double(both) / either;
 			std::printf("\"iou\": %.6g, \"iou_stderr\": %.3g, \"volume_samples\": %ld}\n", p,
