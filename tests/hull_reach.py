@@ -10,32 +10,55 @@ import numpy as np
 from scipy.spatial import ConvexHull
 
 
-def point_surface_distance(P, V, F):
+def point_surface_distance(P, V, F, chunk=4096):
     """Exact distance from each point of P to the triangle surface (V, F), and the nearest face.
     Candidate faces come from a k-d tree of face centres: a face can only be the nearest if its
-    bounding sphere reaches within the best upper bound found among the nearest centres."""
+    bounding sphere reaches within the best upper bound found among the nearest centres. Faces much
+    larger than the typical one (long cut caps, CAD strips) would widen every query to the whole
+    surface, so they enter the tree as pieces (split in four until small; the distance to a face is
+    the least over its pieces). Points go in chunks, so memory stays bounded."""
     from scipy.spatial import cKDTree
     P = np.atleast_2d(np.asarray(P, float))
     A, B, C = V[F[:, 0]], V[F[:, 1]], V[F[:, 2]]
+    owner = np.arange(len(F))
+    radius = _radius(A, B, C)
+    cap = 4 * np.median(radius) + 1e-3 * np.ptp(V, 0).max()
+    big = radius > cap
+    while big.any():
+        a, b, c, o = A[big], B[big], C[big], owner[big]
+        ab, bc, ca = (a + b) / 2, (b + c) / 2, (c + a) / 2
+        pieces = [(a, ab, ca), (ab, b, bc), (ca, bc, c), (ab, bc, ca)]
+        A = np.concatenate([A[~big]] + [t[0] for t in pieces])
+        B = np.concatenate([B[~big]] + [t[1] for t in pieces])
+        C = np.concatenate([C[~big]] + [t[2] for t in pieces])
+        owner = np.concatenate([owner[~big]] + [o] * 4)
+        radius = _radius(A, B, C)
+        big = radius > cap
     centre = (A + B + C) / 3
-    radius = np.sqrt(np.max([((X - centre) ** 2).sum(1) for X in (A, B, C)], axis=0))
     tree = cKDTree(centre)
-    k = min(8, len(F))
-    dk, ik = tree.query(P, k=k)
-    dk, ik = dk.reshape(len(P), k), ik.reshape(len(P), k)
-    ub = (dk + radius[ik]).min(1)
-    near = tree.query_ball_point(P, ub + radius.max())
-    rows = np.repeat(np.arange(len(P)), [len(n) for n in near])
-    cols = np.fromiter((c for n in near for c in n), np.int64, len(rows))
-    keep = np.sqrt(((P[rows] - centre[cols]) ** 2).sum(1)) - radius[cols] <= ub[rows]
-    rows, cols = rows[keep], cols[keep]
-    d = _point_triangle(P[rows], A[cols], B[cols], C[cols])
-    order = np.lexsort((d, rows))   # by point, nearest first
-    first = order[np.r_[True, rows[order][1:] != rows[order][:-1]]]
     dist, face = np.empty(len(P)), np.empty(len(P), np.int64)
-    dist[rows[first]] = d[first]
-    face[rows[first]] = cols[first]
+    for lo in range(0, len(P), chunk):
+        Q = P[lo:lo + chunk]
+        k = min(8, len(A))
+        dk, ik = tree.query(Q, k=k)
+        dk, ik = dk.reshape(len(Q), k), ik.reshape(len(Q), k)
+        ub = (dk + radius[ik]).min(1)
+        near = tree.query_ball_point(Q, ub + radius.max())
+        rows = np.repeat(np.arange(len(Q)), [len(n) for n in near])
+        cols = np.fromiter((c for n in near for c in n), np.int64, len(rows))
+        keep = np.sqrt(((Q[rows] - centre[cols]) ** 2).sum(1)) - radius[cols] <= ub[rows]
+        rows, cols = rows[keep], cols[keep]
+        d = _point_triangle(Q[rows], A[cols], B[cols], C[cols])
+        order = np.lexsort((d, rows))   # by point, nearest first
+        first = order[np.r_[True, rows[order][1:] != rows[order][:-1]]]
+        dist[lo + rows[first]] = d[first]
+        face[lo + rows[first]] = owner[cols[first]]
     return dist, face
+
+
+def _radius(A, B, C):
+    centre = (A + B + C) / 3
+    return np.sqrt(np.max([((X - centre) ** 2).sum(1) for X in (A, B, C)], axis=0))
 
 
 def _point_triangle(p, a, b, c):
