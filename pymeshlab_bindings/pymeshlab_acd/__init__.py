@@ -9,6 +9,14 @@ filters as ``pymeshlab.MeshSet`` methods::
     ms.compute_scalar_by_notch_concavity()
     ms.generate_approximate_convex_decomposition(tau=2.0)
     ms.generate_polygon_approximate_convex_decomposition(tau=1.0)   # on a planar polygon layer
+
+or, from arrays, without a MeshSet::
+
+    hulls = pymeshlab_acd.convex_decomposition(vertices, faces, tau=2.0)   # [(V, F), ...]
+
+``tau`` is a float (percent of the size, or model units with ``tau_unit="model_units"``), or, as in
+pymeshlab's own filters, ``pymeshlab.PercentageValue`` (percent of the bounding-box diagonal) or
+``pymeshlab.PureValue`` (model units).
 """
 import functools
 import json
@@ -17,7 +25,8 @@ import pathlib
 
 import pymeshlab
 
-__all__ = ["FILTERS", "plugin_path", "load", "decompose", "decompose_polygon", "level_of_detail", "mesh_ids"]
+__all__ = ["FILTERS", "plugin_path", "load", "decompose", "decompose_polygon", "level_of_detail", "mesh_ids",
+           "convex_decomposition"]
 
 # Python names of the plugin's filters (keep in sync with FilterACD::pythonFilterName).
 FILTERS = (
@@ -76,6 +85,7 @@ def _reset_log_on_error(method):
     @functools.wraps(method)
     def call(self, *args, **kwargs):
         global _anchor
+        _tau_value(self, kwargs)
         try:
             return method(self, *args, **kwargs)
         except pymeshlab.PyMeshLabException:
@@ -145,3 +155,55 @@ def level_of_detail(ms, tree_file, tau=None, depth=None, tau_unit="percent_of_si
 
 
 load()
+
+
+def _tau_value(ms, params):
+    """tau given as pymeshlab.PercentageValue (percent of the current mesh's bounding-box diagonal, as
+    pymeshlab means it) or pymeshlab.PureValue (model units) becomes a length in model units."""
+    tau = params.get("tau")
+    if tau is None or isinstance(tau, (int, float)):
+        return
+    if isinstance(tau, (pymeshlab.PercentageValue, pymeshlab.PureValue)):
+        if params.get("tau_unit", "model_units") != "model_units":
+            raise ValueError(f"tau={type(tau).__name__}(...) already says its unit: drop tau_unit="
+                             f"{params['tau_unit']!r}, or pass tau as a float")
+        value = tau.value()
+        if isinstance(tau, pymeshlab.PercentageValue):
+            box = ms.current_mesh().bounding_box()
+            value = value / 100.0 * box.diagonal()
+        params["tau"], params["tau_unit"] = float(value), "model_units"
+        return
+    raise TypeError(f"tau must be a float (percent of the size; model units with tau_unit='model_units'), "
+                    f"pymeshlab.PercentageValue or pymeshlab.PureValue, not {type(tau).__name__}")
+
+
+def convex_decomposition(vertices, faces=None, tau=2.0, return_parts=False, **filter_params):
+    """Approximate convex decomposition of a triangle mesh given as arrays, without a MeshSet or files.
+
+    `vertices` (n x 3) and `faces` (m x 3), or a `trimesh.Trimesh` (or anything with `vertices` and
+    `faces`) as the first argument. `tau` and `filter_params` are generate_approximate_convex_decomposition's
+    (e.g. cut_plane_selection, max_parts, preprocessing="auto" for open or dirty meshes,
+    max_hull_vertices). Returns the convex hulls as a list of (V, F) numpy arrays, one per part; with
+    `return_parts=True`, (hulls, parts, result) where parts are the closed pieces of the solid the hulls
+    stand for and result is the filter's result dictionary.
+    """
+    import numpy as np
+    load()
+    if faces is None and hasattr(vertices, "vertices") and hasattr(vertices, "faces"):
+        vertices, faces = vertices.vertices, vertices.faces
+    if faces is None:
+        raise TypeError("convex_decomposition needs faces: pass (vertices, faces) or a trimesh.Trimesh")
+    V = np.ascontiguousarray(vertices, dtype=np.float64)
+    F = np.ascontiguousarray(faces, dtype=np.int32)
+    if V.ndim != 2 or V.shape[1] != 3 or F.ndim != 2 or F.shape[1] != 3:
+        raise ValueError(f"vertices must be n x 3 and faces m x 3 (got {V.shape} and {F.shape})")
+    ms = pymeshlab.MeshSet()
+    ms.add_mesh(pymeshlab.Mesh(vertex_matrix=V, face_matrix=F), "input")
+    params = dict(filter_params, tau=tau, output_hulls=True)
+    res, ids = decompose(ms, with_tree=False, **params)
+    hulls, parts = [], []
+    for i in ids:
+        m = ms.mesh(i)
+        (hulls if m.label().startswith("acd_hull_") else parts).append(
+            (np.array(m.vertex_matrix()), np.array(m.face_matrix())))
+    return (hulls, parts, res) if return_parts else hulls

@@ -1,0 +1,68 @@
+"""The array API (pymeshlab_acd.convex_decomposition) and tau given as pymeshlab's value types."""
+import numpy as np
+import pymeshlab
+import pytest
+from scipy.spatial import ConvexHull
+
+import pymeshlab_acd
+from conftest import L_SHAPE, U_SHAPE, add_mesh, extrude, is_closed_manifold, volume
+
+
+def test_arrays_in_hulls_out():
+    """Each hull returned is convex and closed, holds its part; the parts fill the U exactly."""
+    V, F = extrude(U_SHAPE, 0, 1)
+    hulls, parts, res = pymeshlab_acd.convex_decomposition(V, F, tau=0.1, tau_unit="model_units",
+                                                           return_parts=True)
+    assert len(hulls) == len(parts) == res["parts"] == 3
+    assert abs(sum(volume(*p) for p in parts) - volume(V, F)) < 1e-9
+    for (Vh, Fh), (Vp, Fp) in zip(hulls, parts):
+        assert isinstance(Vh, np.ndarray) and Vh.shape[1] == 3 and Fh.shape[1] == 3
+        assert is_closed_manifold(Fh) and is_closed_manifold(Fp)
+        qhull = ConvexHull(Vh).volume   # a convex mesh's volume is its hull's
+        assert abs(volume(Vh, Fh) - qhull) < 1e-9 * max(1.0, qhull)
+        assert abs(ConvexHull(Vp).volume - qhull) < 1e-9 * max(1.0, qhull)   # the hull of its part
+    assert pymeshlab_acd.convex_decomposition(V, F, tau=0.1, tau_unit="model_units") \
+        .__len__() == 3   # hulls only by default
+
+
+def test_trimesh_like_input():
+    class Mesh:   # what trimesh.Trimesh offers
+        def __init__(self, V, F):
+            self.vertices, self.faces = V, F
+    V, F = extrude(L_SHAPE, 0, 1)
+    hulls = pymeshlab_acd.convex_decomposition(Mesh(V, F), tau=0.1, tau_unit="model_units")
+    assert len(hulls) == 2
+    # parts may keep concavity up to tau, so their hulls hold a little more than the L's volume 3
+    assert 3.0 - 1e-9 <= sum(ConvexHull(h[0]).volume for h in hulls) <= 3.0 * 1.001
+
+
+def test_tau_as_percentage_and_pure_value():
+    """PercentageValue is percent of the bounding-box diagonal, PureValue model units (pymeshlab's
+    meaning); both give the same parts as the equal length in model units."""
+    V, F = extrude(U_SHAPE, 0, 1)
+    diag = float(np.linalg.norm(V.max(0) - V.min(0)))
+    for tau, length in ((pymeshlab.PercentageValue(5), 0.05 * diag), (pymeshlab.PureValue(0.2), 0.2)):
+        ms = pymeshlab.MeshSet()
+        add_mesh(ms, V, F)
+        res = ms.generate_approximate_convex_decomposition(tau=tau)
+        assert abs(res["tau_model_units"] - length) < 1e-6 * length   # pymeshlab's box diagonal vs numpy's: ~1e-8 apart
+        ref = pymeshlab_acd.convex_decomposition(V, F, tau=length, tau_unit="model_units")
+        assert res["parts"] == len(ref)
+    ms = pymeshlab.MeshSet()
+    add_mesh(ms, V, F)
+    with pytest.raises(TypeError, match="PercentageValue"):
+        ms.generate_approximate_convex_decomposition(tau="3%")
+    with pytest.raises(ValueError, match="drop tau_unit"):
+        ms.generate_approximate_convex_decomposition(tau=pymeshlab.PercentageValue(3), tau_unit="percent_of_size")
+
+
+def test_bad_arrays_are_refused_with_a_message():
+    with pytest.raises(ValueError, match="n x 3"):
+        pymeshlab_acd.convex_decomposition(np.zeros((4, 2)), np.zeros((1, 3), int))
+    with pytest.raises(TypeError, match="needs faces"):
+        pymeshlab_acd.convex_decomposition(np.zeros((4, 3)))
+    V, F = extrude(L_SHAPE, 0, 1)
+    with pytest.raises(pymeshlab.PyMeshLabException, match="open"):
+        pymeshlab_acd.convex_decomposition(V, F[:-1])
+    hulls = pymeshlab_acd.convex_decomposition(V, F[:-1], preprocessing="auto", tau=5.0)
+    assert len(hulls) >= 2
