@@ -720,12 +720,6 @@ Decomposition decompose_normalized(const Solid& solid, const DecomposeOptions& o
 		parallel_for(2, [&](size_t s) { measure_node(D.nodes[id].child[s]); });
 		for (int s = 0; s < 2; ++s) open.push(D.nodes[id].child[s]);
 		++parts;
-		if (std::getenv("ACD_DEBUG"))
-			std::fprintf(stderr, "cut %s conc %.4g notch (%.3f %.3f %.3f) n (%.3f %.3f %.3f) -> %.4g %.4g (faces %zu %zu)\n",
-			             path.c_str(), D.nodes[id].concavity, notch.x(), notch.y(), notch.z(), best.plane.n.x(),
-			             best.plane.n.y(), best.plane.n.z(), D.nodes[D.nodes[id].child[0]].concavity,
-			             D.nodes[D.nodes[id].child[1]].concavity, D.nodes[D.nodes[id].child[0]].mesh.F.size(),
-			             D.nodes[D.nodes[id].child[1]].mesh.F.size());
 	}
 	if (keep)
 		for (int l : D.leaves()) D.kept_cavities += D.nodes[l].cavities;

@@ -35,10 +35,4 @@ struct Topology
 // `flat`: an angle threshold alone lets the noisy normals of tiny cut triangles decide.
 bool is_reflex(const TriMesh& m, const Topology& t, int f, int k);
 
-inline long long edge_key(int a, int b)
-{
-	if (a > b) std::swap(a, b);
-	return (static_cast<long long>(a) << 32) | static_cast<unsigned>(b);
-}
-
 } // namespace acd
