@@ -1,4 +1,4 @@
-"""The decomposition tree as level of detail (issue 7, part): saved once, coarser levels read back
+"""The decomposition tree as level of detail: saved once, coarser levels read back
 without recomputing. Parts are re-measured here (closedness, volumes, concavity through the
 notch-concavity filter), not read from the tree."""
 import json
@@ -86,3 +86,30 @@ def test_bad_tree_files_get_a_clear_error(ms, tmp_path):
         pymeshlab_acd.level_of_detail(ms, bad, tau=5.0)
     with pytest.raises(pymeshlab.PyMeshLabException, match="Cannot read"):
         pymeshlab_acd.level_of_detail(ms, tmp_path / "missing.json", tau=5.0)
+
+
+def test_coarser_level_never_covers_a_hole(ms, tmp_path):
+    """A low-poly ring's root has a small notch concavity while its hull covers the hole: a coarser
+    level at a tau between the two must still split the ring, every part's hull within that tau by the
+    independent measure."""
+    from hull_reach import hull_reach
+    V, F = torus(R=2.0, r=0.5, nu=8, nv=6)
+    add_mesh(ms, V, F)
+    tree = tmp_path / "ring.json"
+    res, _ = pymeshlab_acd.decompose(ms, tau=0.1, tau_unit="model_units", tree_file=tree)
+    root = json.loads(tree.read_text())["nodes"][0]
+    reach, _ = hull_reach(V, F, slack=1e-3)   # the whole ring's hull over its hole
+    coarse = 1.05 * root["concavity"]
+    assert coarse < reach, (root["concavity"], reach)   # the notches alone would keep the ring whole
+    ms.set_current_mesh(0)
+    lod, ids = pymeshlab_acd.level_of_detail(ms, tree, tau=coarse, tau_unit="model_units")
+    assert 1 < lod["parts"] <= res["parts"]
+    total = 0.0
+    for i in ids:
+        Vp, Fp = ms.mesh(i).vertex_matrix(), ms.mesh(i).face_matrix()
+        assert is_closed_manifold(Fp)
+        total += volume(Vp, Fp)
+        hull_within(Vp, Fp, coarse, ms.mesh(i).label())
+    assert total == pytest.approx(volume(V, F), rel=1e-6)
+    print(f"ring: root notch concavity {root['concavity']:.3f}, hull reach {reach:.3f}; "
+          f"level at {coarse:.3f}: {lod['parts']} of {res['parts']} parts")

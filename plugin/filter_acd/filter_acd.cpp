@@ -731,7 +731,8 @@ std::map<std::string, QVariant> FilterACD::levelOfDetail(const RichParameterList
 	}
 	const int depth = par.getInt("depth");
 	if (by_depth && depth < 0) throw MLException("depth must be 0 (the root) or more.");
-	const std::vector<int> level = acd::level_of_detail(D, tau, by_depth ? depth : -1);
+	if (cb && !by_depth) cb(2, "Checking the coarser parts' hulls...");
+	const std::vector<int> level = by_depth ? acd::level_of_detail(D, tau, depth) : acd::level_of_detail_within(D, tau, hulls);
 	double                 worst = 0;
 	int                    idx = 0, open_parts = 0;
 	for (int id : level) {

@@ -1,4 +1,5 @@
 #include "acd/decompose.h"
+#include "acd/hull_reach.h"
 #include "acd/parallel.h"
 
 #include <Eigen/Eigenvalues>
@@ -13,6 +14,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <functional>
 #include <map>
 #include <optional>
 #include <queue>
@@ -290,20 +292,45 @@ std::string Decomposition::to_json(bool geometry) const
 	return o.str();
 }
 
-std::vector<int> level_of_detail(const Decomposition& D, double tau, int depth)
+namespace {
+
+std::vector<int> level_where(const Decomposition& D, const std::function<bool(int)>& whole)
 {
 	std::vector<int> out, stack{0};
 	while (!stack.empty()) {
-		const int   id = stack.back();
-		const Node& n  = D.nodes[id];
+		const int id = stack.back();
 		stack.pop_back();
-		const bool whole = depth >= 0 ? (int) n.path.size() - 1 >= depth
-		                              : n.concavity <= tau && !n.solids && (n.cavities == 0 || D.kept_cavities > 0);
-		if (n.leaf() || whole) out.push_back(id);
-		else stack.insert(stack.end(), {n.child[1], n.child[0]});
+		if (D.nodes[id].leaf() || whole(id)) out.push_back(id);
+		else stack.insert(stack.end(), {D.nodes[id].child[1], D.nodes[id].child[0]});
 	}
 	std::sort(out.begin(), out.end(), [&](int a, int b) { return D.nodes[a].path < D.nodes[b].path; });
 	return out;
+}
+
+bool within_by_notches(const Decomposition& D, const Node& n, double tau)
+{
+	return n.concavity <= tau && !n.solids && (n.cavities == 0 || D.kept_cavities > 0);
+}
+
+} // namespace
+
+std::vector<int> level_of_detail(const Decomposition& D, double tau, int depth)
+{
+	return level_where(D, [&](int id) {
+		const Node& n = D.nodes[id];
+		return depth >= 0 ? (int) n.path.size() - 1 >= depth : within_by_notches(D, n, tau);
+	});
+}
+
+std::vector<int> level_of_detail_within(const Decomposition& D, double tau, const std::vector<TriMesh>& hull)
+{
+	return level_where(D, [&](int id) {
+		if (!within_by_notches(D, D.nodes[id], tau)) return false;
+		const TriMesh    solid = rebuild_solid(D, id);
+		const ConvexHull h(id < (int) hull.size() && !hull[id].V.empty() ? hull[id].V : solid.V);
+		const HullReach  r = hull_reach(solid, h, std::vector<char>(h.facets(), 1), tau, 0.01 * tau);
+		return r.upper <= 1.01 * tau;
+	});
 }
 
 TriMesh rebuild_solid(const Decomposition& D, int id)

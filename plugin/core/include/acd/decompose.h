@@ -95,6 +95,12 @@ struct Decomposition
 // that depth (and leaves above it). Node ids in path order.
 std::vector<int> level_of_detail(const Decomposition& D, double tau, int depth = -1);
 
+// The same by tau, and a node inside the tree is taken whole only if its hull is also certified within
+// tau (hull_reach of the node rebuilt from the tree, to 1% of tau): the cuts never measured the hull
+// of a node they split for a deeper notch, and a coarse part's hull may cover a hole its notches do not
+// see (a ring's arc). `hull` gives the node's hull, or the rebuilt solid's when empty.
+std::vector<int> level_of_detail_within(const Decomposition& D, double tau, const std::vector<TriMesh>& hull = {});
+
 // The solid of node `id` rebuilt from the leaf meshes below it: the caps of the cuts inside the
 // subtree are dropped, vertices welded, and the vertices that later cuts added on one side of a cap's
 // rim are inserted into the other side's edges, so the result is closed again.
