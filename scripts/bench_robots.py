@@ -10,8 +10,9 @@ represents every robot.
     scripts/bench.sh --robots --methods ours   ours only (--methods peers: the peers only)
 Meshes closed as shipped are decomposed as given; open or non-manifold ones take the batch's `auto`
 path (alpha wrap, with the hollow check). Rows are kept per method group in out/robots/robots-ours.json
-and robots-peers.json, so a run resumes where the last one stopped (--fresh starts over) and the two
-groups can run side by side; the summary (robots.md) is written from both.
+and robots-peers.json, so a run resumes where the last one stopped (--fresh starts over; a fresh
+checkout starts from the rows published in docs/robots/) and the two groups can run side by side;
+the summary (robots.md) is written from both.
 """
 import argparse
 import hashlib
@@ -128,6 +129,7 @@ def main():
     ap.add_argument("--quick", action="store_true", help="a fixed 20-mesh subset (ours and the peers)")
     ap.add_argument("--methods", choices=["all", "ours", "peers"], default="all")
     ap.add_argument("--fresh", action="store_true", help="discard the rows of earlier runs")
+    ap.add_argument("--report", action="store_true", help="run nothing: write the summary of the rows kept")
     ap.add_argument("--sample", type=int, default=60, help="meshes the peers run on (every robot represented)")
     ap.add_argument("--limit", type=int, default=0, help="at most this many meshes for ours (0: all)")
     ap.add_argument("--samples", type=int, default=100000, help="Monte Carlo samples per metric")
@@ -143,8 +145,12 @@ def main():
         files = files[:args.limit]
     out = pathlib.Path(args.out)
     (out / "inputs").mkdir(parents=True, exist_ok=True)
-    groups = ["ours", "peers"] if args.methods == "all" else [args.methods]
+    groups = [] if args.report else ["ours", "peers"] if args.methods == "all" else [args.methods]
     stores = {g: out / f"robots-{g}.json" for g in ("ours", "peers")}
+    for g, f in stores.items():   # a fresh checkout resumes from the rows published in docs/robots/
+        published = REPO / "docs" / "robots" / f.name
+        if not f.exists() and published.exists() and not args.fresh:
+            f.write_text(published.read_text())
     done = {g: ([] if args.fresh and g in groups else json.loads(f.read_text()) if f.exists() else [])
             for g, f in stores.items()}
     have = {(r["mesh"], r["method"], r["setting"]) for rs in done.values() for r in rs}
