@@ -8,14 +8,14 @@ out="$(realpath -m "${1:-$PWD/out/demo}")"
 mkdir -p "$out"
 echo
 echo "== Notch concavity of the bundled bunny =="
-python3 -m pymeshlab_acd concavity --no-progress --out "$out"
+python3 -m pymeshlab_acd concavity --demo --no-progress --out "$out"
 for tau in 8 4; do
 	echo
 	echo "== Approximate convex decomposition, tau = $tau% of the bunny's size =="
-	python3 -m pymeshlab_acd decompose --tau "$tau" --hulls --out "$out/tau_$tau"
+	python3 -m pymeshlab_acd decompose --demo --tau "$tau" --hulls --out "$out/tau_$tau"
 done
 echo
 echo "== From the tree: a coarser level without recomputing, the skeleton, the hull union (tau = 3%) =="
-python3 -m pymeshlab_acd structure --tau 3 --coarser 6 --no-progress --out "$out/structure"
+python3 -m pymeshlab_acd structure --demo --tau 3 --coarser 6 --no-progress --out "$out/structure"
 echo
 echo "Output files: $out"

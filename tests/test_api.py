@@ -66,3 +66,24 @@ def test_bad_arrays_are_refused_with_a_message():
         pymeshlab_acd.convex_decomposition(V, F[:-1])
     hulls = pymeshlab_acd.convex_decomposition(V, F[:-1], preprocessing="auto", tau=5.0)
     assert len(hulls) >= 2
+
+
+def _cli(*args):
+    import subprocess
+    import sys
+    return subprocess.run([sys.executable, "-m", "pymeshlab_acd", *args], capture_output=True, text=True, timeout=120)
+
+
+def test_cli_checks_arguments_before_any_work(tmp_path):
+    """One-line refusals naming the fix, before any decomposition; --version; no silent default mesh."""
+    r = _cli("--version")
+    assert r.returncode == 0 and r.stdout.strip().split()[-1][0].isdigit()
+    r = _cli("decompose")
+    assert r.returncode == 2 and "--demo" in r.stderr
+    r = _cli("decompose", str(tmp_path / "missing.obj"))
+    assert r.returncode == 2 and "no such file" in r.stderr
+    (tmp_path / "afile").write_text("x")
+    r = _cli("decompose", "--demo", "--out", str(tmp_path / "afile"))
+    assert r.returncode == 2 and "is a file" in r.stderr
+    r = _cli("decompose", "--demo", "--export")
+    assert r.returncode == 2 and "give --out" in r.stderr

@@ -2,7 +2,7 @@
               python -m pymeshlab_acd polygon POLYGON [options]
               python -m pymeshlab_acd batch IN_DIR OUT_DIR [--workers N] [--ray ADDRESS|local] [options]
 
-MESH defaults to pymeshlab's bundled bunny. POLYGON is a .poly, .svg or plain list-of-loops file (see
+MESH is a mesh file; --demo takes pymeshlab's bundled bunny instead. POLYGON is a .poly, .svg or plain list-of-loops file (see
 pymeshlab_acd.polygon_io). Progress is printed while the filter runs.
 """
 import argparse
@@ -223,6 +223,7 @@ def _in_plane(V):
 def main(argv=None):
     p = argparse.ArgumentParser(prog="python -m pymeshlab_acd",
                                 description="Approximate convex decomposition (Lien & Amato) through pymeshlab.")
+    p.add_argument("--version", action="version", version=f"%(prog)s {_version()}")
     sub = p.add_subparsers(dest="cmd", required=True)
     c = sub.add_parser("concavity", help="measure notch concavity (compute_scalar_by_notch_concavity)")
     d = sub.add_parser("decompose", help="decompose (generate_approximate_convex_decomposition)")
@@ -239,7 +240,8 @@ def main(argv=None):
     g.add_argument("--hole-order", default="first", choices=["first", "by_concavity"])
     g.add_argument("--max-parts", type=int, default=0)
     for s in (c, d):
-        s.add_argument("mesh", nargs="?", default=BUNNY, help="closed mesh file (default: pymeshlab's bunny)")
+        s.add_argument("mesh", nargs="?", help="mesh file (closed, or see --preprocessing)")
+        s.add_argument("--demo", action="store_true", help="use pymeshlab's bundled bunny as MESH")
         s.add_argument("--out", help="folder for output files")
         s.add_argument("--no-progress", dest="progress", action="store_false", help="do not print progress")
     d.add_argument("--tau", type=float, default=2.0, help="concavity tolerance (default 2 = 2%% of size)")
@@ -262,7 +264,8 @@ def main(argv=None):
     d.add_argument("--export", action="store_true",
                    help="also write collision hulls (OBJ, STL), a URDF, an MJCF and a MeshLab project to OUT/export")
     st = sub.add_parser("structure", help="from the tree: a coarser level, the skeleton, the hull union")
-    st.add_argument("mesh", nargs="?", default=BUNNY, help="closed mesh file (default: pymeshlab's bunny)")
+    st.add_argument("mesh", nargs="?", help="closed mesh file")
+    st.add_argument("--demo", action="store_true", help="use pymeshlab's bundled bunny as MESH")
     st.add_argument("--out", required=True, help="folder for tree.json, skeleton.obj, hull_union.obj")
     st.add_argument("--no-progress", dest="progress", action="store_false", help="do not print progress")
     st.add_argument("--tau", type=float, default=3.0, help="concavity tolerance (default 3 = 3%% of size)")
@@ -299,12 +302,42 @@ def main(argv=None):
         s.add_argument("--scale", type=float, default=1.0, help="metres per model unit (URDF, MJCF)")
         s.add_argument("--density", type=float, default=1000.0, help="kg/m^3, for the mass and inertia")
     a = p.parse_args(argv)
+    _check_paths(p, a)
     try:
         return {"concavity": cmd_concavity, "decompose": cmd_decompose, "polygon": cmd_polygon,
                 "batch": cmd_batch, "structure": cmd_structure}[a.cmd](a)
     except (pymeshlab.PyMeshLabException, ValueError, OSError) as e:
         print(f"error: {e}", file=sys.stderr)
         return 1
+
+
+def _version():
+    try:
+        from importlib.metadata import version
+        return version("pymeshlab_acd")
+    except Exception:   # run from a source tree that is not installed
+        return "unknown"
+
+
+def _check_paths(p, a):
+    """Arguments and output paths are checked before any work: a mistake costs no decomposition."""
+    if hasattr(a, "demo"):
+        if a.demo and a.mesh:
+            p.error("give a mesh file or --demo, not both")
+        if a.demo:
+            a.mesh = BUNNY
+        elif not a.mesh:
+            p.error("give a mesh file (or --demo for pymeshlab's bunny)")
+    for name in ("mesh", "polygon", "in_dir"):
+        path = getattr(a, name, None)
+        if path and not os.path.exists(path):
+            p.error(f"{path}: no such file or folder")
+    for name in ("out", "out_dir"):
+        path = getattr(a, name, None)
+        if path and os.path.exists(path) and not os.path.isdir(path):
+            p.error(f"--{name.replace('_', '-')} {path} is a file; it must be a folder (it is created if missing)")
+    if getattr(a, "export", False) and not a.out:
+        p.error("--export writes to OUT/export: give --out FOLDER")
 
 
 if __name__ == "__main__":
