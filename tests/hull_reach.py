@@ -16,13 +16,18 @@ def point_surface_distance(P, V, F, chunk=4096):
     bounding sphere reaches within the best upper bound found among the nearest centres. Faces much
     larger than the typical one (long cut caps, CAD strips) would widen every query to the whole
     surface, so they enter the tree as pieces (split in four until small; the distance to a face is
-    the least over its pieces). Points go in chunks, so memory stays bounded."""
+    the least over its pieces). Points go in chunks of a bounded number of candidate pairs."""
     from scipy.spatial import cKDTree
     P = np.atleast_2d(np.asarray(P, float))
     A, B, C = V[F[:, 0]], V[F[:, 1]], V[F[:, 2]]
     owner = np.arange(len(F))
     radius = _radius(A, B, C)
-    cap = 4 * np.median(radius) + 1e-3 * np.ptp(V, 0).max()
+    # The largest piece: a few times the typical face, raised until the pieces number at most ~500k
+    # (a face of radius r becomes 4^ceil(log2(r / cap)) pieces).
+    cap = 4 * np.median(radius) + 1e-9 * np.ptp(V, 0).max()
+    pieces = lambda cap: (4.0 ** np.ceil(np.log2(np.maximum(radius / cap, 1)))).sum()   # noqa: E731
+    while pieces(cap) > 500_000:
+        cap *= 1.5
     big = radius > cap
     while big.any():
         a, b, c, o = A[big], B[big], C[big], owner[big]
@@ -37,22 +42,31 @@ def point_surface_distance(P, V, F, chunk=4096):
     centre = (A + B + C) / 3
     tree = cKDTree(centre)
     dist, face = np.empty(len(P)), np.empty(len(P), np.int64)
-    for lo in range(0, len(P), chunk):
-        Q = P[lo:lo + chunk]
-        k = min(8, len(A))
-        dk, ik = tree.query(Q, k=k)
-        dk, ik = dk.reshape(len(Q), k), ik.reshape(len(Q), k)
-        ub = (dk + radius[ik]).min(1)
-        near = tree.query_ball_point(Q, ub + radius.max())
-        rows = np.repeat(np.arange(len(Q)), [len(n) for n in near])
-        cols = np.fromiter((c for n in near for c in n), np.int64, len(rows))
-        keep = np.sqrt(((Q[rows] - centre[cols]) ** 2).sum(1)) - radius[cols] <= ub[rows]
-        rows, cols = rows[keep], cols[keep]
-        d = _point_triangle(Q[rows], A[cols], B[cols], C[cols])
-        order = np.lexsort((d, rows))   # by point, nearest first
-        first = order[np.r_[True, rows[order][1:] != rows[order][:-1]]]
-        dist[lo + rows[first]] = d[first]
-        face[lo + rows[first]] = owner[cols[first]]
+    k = min(8, len(A))
+    dk, ik = tree.query(P, k=k)
+    dk, ik = dk.reshape(len(P), k), ik.reshape(len(P), k)
+    ub = (dk + radius[ik]).min(1)
+    reach = ub + radius.max()
+    count = tree.query_ball_point(P, reach, return_length=True)
+    # Chunks of points holding at most `budget` candidate pairs (a point far from a dense surface
+    # has many faces within its bound; it goes alone if need be).
+    budget = 4_000_000
+    ends = np.searchsorted(np.cumsum(count), np.arange(budget, int(count.sum()) + budget, budget), side="right")
+    bounds = np.unique(np.concatenate([[0], np.maximum(ends, 1), [len(P)]]).clip(0, len(P)))
+    for lo, hi in zip(bounds[:-1], bounds[1:]):
+        for lo2 in range(lo, hi, chunk):
+            hi2 = min(hi, lo2 + chunk)
+            Q = P[lo2:hi2]
+            near = tree.query_ball_point(Q, reach[lo2:hi2])
+            rows = np.repeat(np.arange(len(Q)), [len(n) for n in near])
+            cols = np.fromiter((c for n in near for c in n), np.int64, len(rows))
+            keep = np.sqrt(((Q[rows] - centre[cols]) ** 2).sum(1)) - radius[cols] <= ub[lo2 + rows]
+            rows, cols = rows[keep], cols[keep]
+            d = _point_triangle(Q[rows], A[cols], B[cols], C[cols])
+            order = np.lexsort((d, rows))   # by point, nearest first
+            first = order[np.r_[True, rows[order][1:] != rows[order][:-1]]]
+            dist[lo2 + rows[first]] = d[first]
+            face[lo2 + rows[first]] = owner[cols[first]]
     return dist, face
 
 
