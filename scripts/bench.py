@@ -3,7 +3,8 @@
 
 Every method runs in its own child process on the same OBJ input; its hulls are scored by one
 neutral tool (acd_metrics, C++): hull count, hull error (largest distance from the surface of the
-union of hulls to the input surface, fraction of the bounding-box diagonal), volume IoU with the
+union of hulls to the input surface, fraction of the bounding-box diagonal; split into outside the
+solid and inside it for closed inputs), volume IoU with the
 input solid (Monte Carlo, with its standard error). Wall time is the decomposition call alone; peak
 memory is the child's whole-process peak resident set (its VmHWM). For ours also the paper's
 concavity of the parts (the filter's max part concavity, fraction of the diagonal).
@@ -212,16 +213,19 @@ def bench_corpus(args, outdir):
 
 def row_line(r):
     if "error" in r:
-        return f"| {r['mesh']} | {r['faces']} | {r['method']} | {r['setting']} | error: {r['error'][:80]} | | | | | |"
+        return f"| {r['mesh']} | {r['faces']} | {r['method']} | {r['setting']} | error: {r['error'][:80]} | | | | | | |"
     conc = r.get("concavity")
     conc = fmt(100 * conc / r["bbox_diag"], ".2f") if conc is not None else ""
     iou = "n/a" if r.get("iou") is None else f"{r['iou']:.3f} ± {r['iou_stderr']:.3f}"
+    side = ("n/a" if r.get("hull_error_outside") is None else
+            f"{100 * r['hull_error_outside']:.2f} / {100 * r['hull_error_inside']:.2f}")
     return (f"| {r['mesh']} | {r['faces']} | {r['method']} | {r['setting']} | {r['hulls']} | "
-            f"{100 * r['hull_error']:.2f} | {iou} | {r['time']:.2f} | {r['peak_mb']:.0f} | {conc} |")
+            f"{100 * r['hull_error']:.2f} | {side} | {iou} | {r['time']:.2f} | {r['peak_mb']:.0f} | {conc} |")
 
 
-HEADER = ("| mesh | faces | method | setting | hulls | hull error (% diag) | volume IoU | time (s) | "
-          "peak memory (MB) | part concavity (% diag) |\n|---|---|---|---|---|---|---|---|---|---|")
+HEADER = ("| mesh | faces | method | setting | hulls | hull error (% diag) | outside / inside (% diag) | "
+          "volume IoU | time (s) | peak memory (MB) | part concavity (% diag) |\n"
+          "|---|---|---|---|---|---|---|---|---|---|---|")
 
 
 def plot(rows, path):
