@@ -57,6 +57,10 @@ def allowed(i, with_tau=True):
     _, how, _, params = case(i)
     if params.get("preprocessing") == "alpha_wrap":   # the wrap makes every non-empty input a solid
         ok = {"refused by pymeshlab", "empty"} if how == "empty" else {None}
+    elif params.get("preprocessing") == "auto":   # a mesh refused as given is wrapped; a valid one is not
+        ok = {"refused by pymeshlab", "empty"} if how == "empty" else {None}
+        if how in CAN_SELF_INTERSECT or params.get("on_self_intersection") == "refuse":
+            ok |= {"self-intersection"}
     else:
         ok = set(REFUSALS.get(how, {None}))
         if how in CAN_SELF_INTERSECT or params.get("on_self_intersection") == "refuse":
@@ -175,6 +179,8 @@ def case(i):
         params["on_self_intersection"] = "refuse"
     if i % 5 == 4:   # the preprocessing that makes dirty input decomposable
         params.update(preprocessing="alpha_wrap", wrap_alpha=5.0, wrap_offset=0.5)
+    elif i % 5 == 2:   # as given when valid, else wrapped
+        params.update(preprocessing="auto", wrap_alpha=5.0, wrap_offset=0.5)
     return BASES[b], MUTATIONS[m], s, params
 
 
@@ -222,7 +228,7 @@ def run_case(i, cache):
         if not vol > 0:
             return "violation", f"part {ms.mesh(j).label()} has volume {vol}"
         total += vol
-    if params.get("preprocessing") == "alpha_wrap":
+    if res["alpha_wrapped"]:
         return "ok", f"{res['parts']} parts of the wrap"   # the wrap's volume is not the input's
     v0 = abs(volume(V0, F0))
     if not abs(total - v0) <= 1e-6 * v0:
