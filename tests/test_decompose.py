@@ -232,13 +232,21 @@ def test_disjoint_solids_are_decomposed_each(ms):
 
 
 def test_auto_preprocessing_keeps_a_valid_solid_and_wraps_a_holed_sphere_solid(ms):
-    """auto: a valid solid is decomposed as given; a sphere with a hole too wide for the first alpha is
-    wrapped again with a larger alpha rather than decomposed as the thin skin the first wrap makes."""
+    """auto: a valid solid is decomposed as given; a triangle soup of it is welded; a sphere with a hole
+    too wide for the first alpha is wrapped again with a larger alpha rather than decomposed as the thin
+    skin the first wrap makes."""
     V, F = extrude(L_SHAPE, 0, 1)
     add_mesh(ms, V, F)
     res, ids = pymeshlab_acd.decompose(ms, tau=0.2, tau_unit="model_units", preprocessing="auto", with_tree=False)
     assert not res["alpha_wrapped"] and res["wrap_alpha_used"] == 0 and res["parts"] == 2
     assert abs(sum(volume(ms.mesh(i).vertex_matrix(), ms.mesh(i).face_matrix()) for i in ids) - 3.0) < 1e-9
+
+    # a triangle soup as an STL stores it (each face its own corners): welded, not wrapped
+    soup = pymeshlab.MeshSet()
+    soup.add_mesh(pymeshlab.Mesh(vertex_matrix=V[F.reshape(-1)], face_matrix=np.arange(3 * len(F)).reshape(-1, 3)))
+    res, ids = pymeshlab_acd.decompose(soup, tau=0.2, tau_unit="model_units", preprocessing="auto", with_tree=False)
+    assert not res["alpha_wrapped"] and res["welded_vertices"] == 3 * len(F) - len(V) and res["parts"] == 2
+    assert abs(sum(volume(soup.mesh(i).vertex_matrix(), soup.mesh(i).face_matrix()) for i in ids) - 3.0) < 1e-9
 
     V, F = icosphere(level=3)
     centre_z = V[F].mean(1)[:, 2]

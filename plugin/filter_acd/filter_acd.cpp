@@ -311,9 +311,9 @@ RichParameterList FilterACD::initParameterList(const QAction* a, const MeshModel
 		"alpha_wrap: first wrap it with CGAL's 3D alpha wrapping, which turns open, non-manifold, "
 		"self-intersecting meshes, triangle soups and point clouds into one closed solid (the parts "
 		"then decompose the wrap, which lies about wrap_offset outside the input); auto: as given when "
-		"it is a valid solid, else alpha wrapped, doubling alpha (up to 16%) while the wrap is a hollow "
-		"skin that slipped inside through small holes; an open shell that no such wrap fills keeps the "
-		"first wrap, its skin."));
+		"it is a valid solid, else welded (vertices within 1e-5 of its size) if that makes it one, else "
+		"alpha wrapped, doubling alpha (up to 16%) while the wrap is a hollow skin that slipped inside "
+		"through small holes; an open shell that no such wrap fills keeps the first wrap, its skin."));
 	p.addParam(RichFloat(
 		"wrap_alpha", 1.0, "Alpha wrap: alpha (%)",
 		"With alpha_wrap: gaps, holes and cavities narrower than about this are closed, as a "
@@ -430,6 +430,7 @@ FilterACD::Run FilterACD::runDecomposition(const RichParameterList& par, MeshMod
 		                      .arg(kBytesPerFace * raw.F.size() / 1e6, 0, 'f', 0)
 		                      .arg(avail / 1e6, 0, 'f', 0));
 	double wrapped_alpha = 0;
+	int    welded        = 0;
 	if (par.getEnum("preprocessing") != 0) {
 		std::vector<acd::Vec3> finite;
 		for (const acd::Vec3& p : raw.V)
@@ -444,6 +445,12 @@ FilterACD::Run FilterACD::runDecomposition(const RichParameterList& par, MeshMod
 			wrapped_alpha = alpha;
 		} else {
 			acd::WrapSolidResult w = acd::wrap_solid(raw, alpha / 100 * d0, offset, kAutoMaxAlpha / 100 * d0);
+			if (w.welded > 0) {
+				log("Not decomposable as given (%s) Welding %d vertices within 1e-5 of its size made it a valid "
+				    "solid; it is decomposed welded, not wrapped.", w.reason.c_str(), w.welded);
+				raw    = std::move(w.mesh);
+				welded = w.welded;
+			}
 			if (w.wrapped) {
 				log("Not decomposable as given (%s) It is alpha wrapped: %d wrap(s), alpha %g%% kept, holding "
 				    "%.0f%% of the input's interior.", w.reason.c_str(), w.tries, w.alpha / d0 * 100, 100 * w.inside);
@@ -486,7 +493,7 @@ FilterACD::Run FilterACD::runDecomposition(const RichParameterList& par, MeshMod
 	if (s.unreferenced_vertices > 0) log("%d unreferenced vertices were ignored.", s.unreferenced_vertices);
 	if (s.split_vertices > 0) log("%d non-manifold vertices were split into one copy per fan.", s.split_vertices);
 	acd::Decomposition d = acd::decompose(s, o);
-	return {std::move(s), o, size, std::move(d), wrapped_alpha};
+	return {std::move(s), o, size, std::move(d), wrapped_alpha, welded};
 }
 
 std::map<std::string, QVariant>
@@ -555,6 +562,7 @@ FilterACD::decompose(const RichParameterList& par, MeshDocument& md, vcg::CallBa
 		{"tree_nodes", (int) d.nodes.size()},
 		{"alpha_wrapped", run.wrap_alpha > 0},
 		{"wrap_alpha_used", run.wrap_alpha},
+		{"welded_vertices", run.welded},
 		{"self_intersections", (int) s.self_intersections},
 		{"cavities", s.cavities},
 		{"hole_cuts", d.hole_cuts},

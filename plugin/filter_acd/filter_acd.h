@@ -48,6 +48,7 @@ private:
 		double                size = 0;
 		acd::Decomposition    d;
 		double                wrap_alpha = 0;   // the alpha wrap's alpha (% of size); 0: not wrapped
+		int                   welded     = 0;   // vertices welded (preprocessing = auto)
 	};
 	Run runDecomposition(const RichParameterList& par, MeshModel& input, vcg::CallBackPos* cb);
 	std::map<std::string, QVariant> notchConcavity(MeshModel& m, vcg::CallBackPos* cb);

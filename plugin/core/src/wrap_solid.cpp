@@ -2,10 +2,75 @@
 
 #include "acd/preprocess.h"
 
+#include <algorithm>
 #include <cmath>
 #include <random>
+#include <unordered_map>
 
 namespace acd {
+
+TriMesh weld(const TriMesh& in, double eps, int* merged)
+{
+	struct CellHash
+	{
+		size_t operator()(const std::array<long long, 3>& c) const
+		{
+			return std::hash<long long>()(c[0] * 73856093LL ^ c[1] * 19349663LL ^ c[2] * 83492791LL);
+		}
+	};
+	std::unordered_map<std::array<long long, 3>, std::vector<int>, CellHash> grid;
+	TriMesh          out;
+	std::vector<int> to(in.V.size(), -1);
+	int              n = 0;
+	for (size_t i = 0; i < in.V.size(); ++i) {
+		const Vec3& p = in.V[i];
+		if (!p.allFinite()) {   // kept apart: make_solid names them
+			to[i] = (int) out.V.size();
+			out.V.push_back(p);
+			continue;
+		}
+		const std::array<long long, 3> c{(long long) std::floor(p.x() / eps), (long long) std::floor(p.y() / eps),
+		                                 (long long) std::floor(p.z() / eps)};
+		for (int dx = -1; dx <= 1 && to[i] < 0; ++dx)
+			for (int dy = -1; dy <= 1 && to[i] < 0; ++dy)
+				for (int dz = -1; dz <= 1 && to[i] < 0; ++dz) {
+					auto it = grid.find({c[0] + dx, c[1] + dy, c[2] + dz});
+					if (it == grid.end()) continue;
+					for (int j : it->second)
+						if ((out.V[j] - p).norm() <= eps) { to[i] = j; ++n; break; }
+				}
+		if (to[i] < 0) {
+			to[i] = (int) out.V.size();
+			grid[c].push_back(to[i]);
+			out.V.push_back(p);
+		}
+	}
+	std::vector<std::array<int, 3>> seen;
+	for (const Tri& t : in.F) {
+		bool ok = true;
+		for (int v : t) ok = ok && v >= 0 && v < (int) in.V.size();
+		if (!ok) { out.F.push_back(t); continue; }   // left for make_solid to name
+		const Tri w{to[t[0]], to[t[1]], to[t[2]]};
+		if (w[0] == w[1] || w[1] == w[2] || w[0] == w[2]) continue;
+		out.F.push_back(w);
+	}
+	// Faces the welding made identical (same corners, same turn) are one face.
+	std::vector<std::pair<std::array<int, 3>, int>> keys;
+	for (int f = 0; f < (int) out.F.size(); ++f) {
+		Tri t = out.F[f];
+		std::rotate(t.begin(), std::min_element(t.begin(), t.end()), t.end());
+		keys.push_back({{t[0], t[1], t[2]}, f});
+	}
+	std::sort(keys.begin(), keys.end());
+	std::vector<char> drop(out.F.size(), 0);
+	for (size_t k = 1; k < keys.size(); ++k) drop[keys[k].second] = keys[k].first == keys[k - 1].first;
+	std::vector<Tri> kept;
+	for (size_t f = 0; f < out.F.size(); ++f)
+		if (!drop[f]) kept.push_back(out.F[f]);
+	out.F = std::move(kept);
+	if (merged) *merged = n;
+	return out;
+}
 
 std::vector<double> winding_numbers(const TriMesh& surface, const std::vector<Vec3>& points)
 {
@@ -78,6 +143,23 @@ WrapSolidResult wrap_solid(const TriMesh& input, double alpha, double offset, do
 		if (e.kind != Error::InvalidInput) throw;
 		r.reason = e.what();
 	}
+	{
+		std::vector<Vec3> finite;
+		for (const Vec3& p : input.V)
+			if (p.allFinite()) finite.push_back(p);
+		const double size = finite.empty() ? 0 : extent(finite);
+		int          merged = 0;
+		if (size > 0) try {
+				TriMesh w = weld(input, 1e-5 * size, &merged);
+				if (merged > 0 && make_solid(w).self_intersections == 0) {
+					r.mesh   = std::move(w);
+					r.welded = merged;
+					return r;
+				}
+			} catch (const Error& e) {
+				if (e.kind != Error::InvalidInput) throw;
+			}
+	}
 	// Too few interior samples (a point cloud, a sheet, faces that cancel) cannot tell a skin from a
 	// solid: the first wrap is kept. So is it when no wrap up to max_alpha holds the interior: the
 	// input is then an open shell (a cover, a fairing) rather than a solid with small holes, and its
@@ -89,7 +171,7 @@ WrapSolidResult wrap_solid(const TriMesh& input, double alpha, double offset, do
 		TriMesh      w     = alpha_wrap(input, a, offset);
 		const double share = judge ? share_inside(w, inside) : 1.0;
 		++r.tries;
-		if (r.tries == 1 || share >= min_inside) r = WrapSolidResult{std::move(w), true, a, share, r.tries, r.reason};
+		if (r.tries == 1 || share >= min_inside) r = WrapSolidResult{std::move(w), true, 0, a, share, r.tries, r.reason};
 		if (share >= min_inside || a * 2 > max_alpha * (1 + 1e-9)) break;
 	}
 	return r;

@@ -64,3 +64,23 @@ ACD_TEST(an_open_shell_no_wrap_fills_keeps_its_skin)
 	CHECK(r.alpha == 0.05);
 	CHECK(signed_volume(r.mesh) < 0.1 * (2.0 / 3.0 * M_PI));
 }
+
+ACD_TEST(a_triangle_soup_of_a_closed_box_is_welded_not_wrapped)
+{
+	// As an STL stores it: every face with its own three corners, one corner off by 1e-9.
+	const TriMesh b = shapes::box(Vec3(0, 0, 0), Vec3(2, 1, 1));
+	TriMesh       soup;
+	for (const Tri& t : b.F) {
+		const int n = (int) soup.V.size();
+		for (int v : t) soup.V.push_back(b.V[v]);
+		soup.F.push_back({n, n + 1, n + 2});
+	}
+	soup.V[0] += Vec3(1e-9, 0, 0);
+	const WrapSolidResult r = wrap_solid(soup, 0.05, 0.005, 0.4);
+	CHECK(!r.wrapped);
+	CHECK(r.welded == (int) soup.V.size() - (int) b.V.size());
+	CHECK(r.mesh.F.size() == b.F.size());
+	CHECK_NEAR(signed_volume(r.mesh), 2.0, 1e-8);
+	int merged = -1;
+	CHECK(weld(b, 1e-6, &merged).F.size() == b.F.size() && merged == 0);
+}

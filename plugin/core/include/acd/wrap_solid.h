@@ -10,13 +10,18 @@ namespace acd {
 
 struct WrapSolidResult
 {
-	TriMesh     mesh;               // the wrap (or the input, when `wrapped` is false)
+	TriMesh     mesh;               // the wrap (or the input, welded if `welded` > 0, when not wrapped)
 	bool        wrapped = false;
+	int         welded  = 0;        // vertices merged into another (cracks closed without a wrap)
 	double      alpha   = 0;        // the alpha of the wrap kept (model units)
 	double      inside  = 1;        // share of the input's interior samples inside the wrap kept
 	int         tries   = 0;        // wraps computed (the last one is not always the one kept)
 	std::string reason;             // why the input was not used as given
 };
+
+// Vertices within `eps` of an earlier vertex merged into it, faces that collapse or repeat dropped:
+// STL and CAD exports leave unshared corners and hairline cracks that open an otherwise closed solid.
+TriMesh weld(const TriMesh& input, double eps, int* merged = nullptr);
 
 // Generalized winding number of the surface (V, F) at each point: about 1 inside a closed outward
 // surface, 0 outside, and still close to that for a surface with small holes.
@@ -26,7 +31,7 @@ std::vector<double> winding_numbers(const TriMesh& surface, const std::vector<Ve
 // surface (the wrap slipped inside). Wraps with alpha, 2 alpha, ... up to max_alpha, and keeps the first
 // that holds at least `min_inside` of the points the input's winding number places inside; when none
 // does, the input is an open shell and the first wrap, its skin, is kept. The input is returned as
-// given when make_solid accepts it.
+// given when make_solid accepts it, and welded (1e-5 of its size) when that is all it takes.
 WrapSolidResult wrap_solid(const TriMesh& input, double alpha, double offset, double max_alpha,
                            double min_inside = 0.5);
 
