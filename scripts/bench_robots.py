@@ -229,7 +229,8 @@ def summarize(rows, meshes):
     out = [f"Ours at default settings on {len(ours)} meshes: {len(ok)} decomposed, {len(ours) - len(ok)} failed; "
            f"{parts} parts, {over} of them with a hull farther than tau (+1%) from the part by the independent "
            f"measure; worst part hull / tau {max((r['worst'] for r in ok), default=0):.3f}; "
-           f"{sum(1 for r in ok if r['preprocessing'] != 'none')} wrapped; "
+           f"{sum(1 for r in ok if r['preprocessing'].startswith('welded'))} welded, "
+           f"{sum(1 for r in ok if r['preprocessing'].startswith('alpha_wrap'))} wrapped; "
            f"{sum(1 for r in ok if r.get('tau_convex'))} certified tau-convex by the core; total time "
            f"{sum(r['time'] for r in ok):.0f} s.", ""]
     keyed = sample_rows(rows)
