@@ -2,7 +2,8 @@
 25-mesh subset, one from each of 25 robot descriptions, decomposed at the default settings the way the
 batch runs them (as given when closed, else `auto`: welded, or alpha-wrapped). Every part's hull must
 lie within tau of the part by the independent measure of tests/hull_reach.py (1% of tau slack), and
-the parts must be closed and, unless wrapped, add up to the input's volume."""
+the parts must be closed and, unless wrapped, add up to the input's volume (divergence theorem on
+the input's triangles, welded or not)."""
 import pathlib
 import sys
 
@@ -52,6 +53,7 @@ def test_robot_mesh_hulls_within_tau(corpus, k, tmp_path):
     if not rec["preprocessing"].startswith("alpha_wrap"):   # as given or welded: the input's volume
         ms = pymeshlab.MeshSet()
         ms.load_new_mesh(str(src))
-        v0 = ms.get_geometric_measures()["mesh_volume"]   # MeshLab's own measure
-        assert total == pytest.approx(abs(v0), rel=1e-6)
+        v0 = volume(ms.current_mesh().vertex_matrix(), ms.current_mesh().face_matrix())
+        # welding moves a vertex by at most 1e-5 of the size
+        assert total == pytest.approx(abs(v0), rel=1e-6 if rec["preprocessing"] == "none" else 1e-4)
     print(f"{src.relative_to(meshes)}: {rec['parts']} parts, {rec['preprocessing']}, worst hull {worst:.2f} tau")

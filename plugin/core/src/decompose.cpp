@@ -716,15 +716,21 @@ Decomposition decompose_normalized(const Solid& solid, const DecomposeOptions& o
 			}
 		}
 		// No candidate splits (the notch sits where every plane through it shaves a sliver): halve the
-		// part across its principal axes instead, so that it still shrinks towards tau.
+		// part across its principal axes instead, so that it still shrinks towards tau. A curved strip
+		// crossed in its middle falls in three pieces: then cut nearer an end along the same axes.
 		if (pick < 0) {
 			const Vec3 centre = surface_moments(mesh, Vec3::Zero()).centroid;
-			for (int k = 0; k < 3 && pick < 0; ++k) {
-				planes.push_back(through(centre, ms.rep.frame.axes.row(k).transpose()));
-				trials.emplace_back();
-				run_trial(planes.size() - 1, false);
-				if (trials.back().ok) pick = (int) planes.size() - 1;
-			}
+			for (const double frac : {0.5, 0.3, 0.7, 0.15, 0.85})
+				for (int k = 0; k < 3 && pick < 0; ++k) {
+					const Vec3 axis = ms.rep.frame.axes.row(k).transpose();
+					double     lo = INFINITY, hi = -INFINITY;
+					for (const Vec3& v : mesh.V) lo = std::min(lo, axis.dot(v - centre)), hi = std::max(hi, axis.dot(v - centre));
+					const double at = frac == 0.5 ? 0.0 : lo + frac * (hi - lo);
+					planes.push_back(through(centre + at * axis, axis));
+					trials.emplace_back();
+					run_trial(planes.size() - 1, false);
+					if (trials.back().ok) pick = (int) planes.size() - 1;
+				}
 		}
 		const bool   found = pick >= 0;
 		SplitOutcome best;
