@@ -169,7 +169,9 @@ def test_cli_structure_reports_level_skeleton_and_union(tmp_path):
     print(p.stdout)
     fine = int(re.search(r"decomposition +tau 3.0%: (\d+) parts", p.stdout).group(1))
     coarse = int(re.search(r"coarser level +tau 12.0%: (\d+) parts", p.stdout).group(1))
-    assert fine >= 3 and coarse == 1   # the ring's concavity (0.5) is within 12% of its size (5)
+    # fewer parts at 12%, but never one: the ring's notches (0.5) are within 12% of its size (5), its
+    # hull over the hole (1.5) is not
+    assert 3 <= coarse < fine
     sk = pymeshlab.MeshSet()
     sk.load_new_mesh(str(tmp_path / "out" / "skeleton.obj"))
     assert sk.current_mesh().edge_number() > 0
