@@ -227,10 +227,10 @@ def hue_bins(png: Path, viewport):
 
 
 def test_exported_project_opens_with_one_layer_per_part(start_meshlab, tmp_path):
-    """The .mlp written by `decompose --export` (issue 11) opens in the GUI: one layer per part."""
+    """The .mlp written by `decompose --export` opens in the GUI: one layer per part."""
     import sys
     out = tmp_path / "export"
-    p = subprocess.run([sys.executable, "-m", "pymeshlab_acd", "decompose", "--tau", "6", "--out", str(out),
+    p = subprocess.run([sys.executable, "-m", "pymeshlab_acd", "decompose", "--demo", "--tau", "6", "--out", str(out),
                         "--export", "--no-progress"], capture_output=True, text=True, timeout=600)
     assert p.returncode == 0, p.stderr
     parts = json.loads((out / "summary.json").read_text())["parts"]
