@@ -26,6 +26,7 @@
 #include <array>
 #include <chrono>
 #include <fstream>
+#include <optional>
 #include <unistd.h>
 
 namespace {
@@ -429,8 +430,9 @@ FilterACD::Run FilterACD::runDecomposition(const RichParameterList& par, MeshMod
 		                      .arg(raw.F.size())
 		                      .arg(kBytesPerFace * raw.F.size() / 1e6, 0, 'f', 0)
 		                      .arg(avail / 1e6, 0, 'f', 0));
-	double wrapped_alpha = 0;
-	int    welded        = 0;
+	double                    wrapped_alpha = 0;
+	int                       welded        = 0;
+	std::optional<acd::Solid> validated;   // auto has validated the mesh it keeps unwrapped
 	if (par.getEnum("preprocessing") != 0) {
 		std::vector<acd::Vec3> finite;
 		for (const acd::Vec3& p : raw.V)
@@ -445,6 +447,7 @@ FilterACD::Run FilterACD::runDecomposition(const RichParameterList& par, MeshMod
 			wrapped_alpha = alpha;
 		} else {
 			acd::WrapSolidResult w = acd::wrap_solid(raw, alpha / 100 * d0, offset, kAutoMaxAlpha / 100 * d0);
+			validated              = std::move(w.solid);
 			if (w.welded > 0) {
 				log("Not decomposable as given (%s) Welding %d vertices within 1e-5 of its size made it a valid "
 				    "solid; it is decomposed welded, not wrapped.", w.reason.c_str(), w.welded);
@@ -462,7 +465,7 @@ FilterACD::Run FilterACD::runDecomposition(const RichParameterList& par, MeshMod
 			log("Alpha wrap: %zu faces in, %zu out; the wrap lies about %g outside the input (alpha %g)", before,
 			    raw.F.size(), offset, wrapped_alpha / 100 * d0);
 	}
-	acd::Solid s = acd::make_solid(raw);
+	acd::Solid s = validated ? std::move(*validated) : acd::make_solid(raw);
 	if (s.self_intersections > 0) {
 		if (par.getEnum("on_self_intersection") == 1) throw MLException(self_intersection_message(s.self_intersections));
 		log("Warning: %s", qUtf8Printable(self_intersection_message(s.self_intersections)));

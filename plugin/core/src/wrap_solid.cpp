@@ -45,7 +45,6 @@ TriMesh weld(const TriMesh& in, double eps, int* merged)
 			out.V.push_back(p);
 		}
 	}
-	std::vector<std::array<int, 3>> seen;
 	for (const Tri& t : in.F) {
 		bool ok = true;
 		for (int v : t) ok = ok && v >= 0 && v < (int) in.V.size();
@@ -136,8 +135,8 @@ WrapSolidResult wrap_solid(const TriMesh& input, double alpha, double offset, do
 {
 	WrapSolidResult r;
 	try {
-		make_solid(input);
-		r.mesh = input;
+		r.solid = make_solid(input);
+		r.mesh  = input;
 		return r;
 	} catch (const Error& e) {
 		if (e.kind != Error::InvalidInput) throw;
@@ -151,10 +150,14 @@ WrapSolidResult wrap_solid(const TriMesh& input, double alpha, double offset, do
 		int          merged = 0;
 		if (size > 0) try {
 				TriMesh w = weld(input, 1e-5 * size, &merged);
-				if (merged > 0 && make_solid(w).self_intersections == 0) {
-					r.mesh   = std::move(w);
-					r.welded = merged;
-					return r;
+				if (merged > 0) {
+					Solid s = make_solid(w);
+					if (s.self_intersections == 0) {
+						r.mesh   = std::move(w);
+						r.welded = merged;
+						r.solid  = std::move(s);
+						return r;
+					}
 				}
 			} catch (const Error& e) {
 				if (e.kind != Error::InvalidInput) throw;
@@ -171,7 +174,7 @@ WrapSolidResult wrap_solid(const TriMesh& input, double alpha, double offset, do
 		TriMesh      w     = alpha_wrap(input, a, offset);
 		const double share = judge ? share_inside(w, inside) : 1.0;
 		++r.tries;
-		if (r.tries == 1 || share >= min_inside) r = WrapSolidResult{std::move(w), true, 0, a, share, r.tries, r.reason};
+		if (r.tries == 1 || share >= min_inside) r = WrapSolidResult{std::move(w), true, 0, a, share, r.tries, r.reason, std::nullopt};
 		if (share >= min_inside || a * 2 > max_alpha * (1 + 1e-9)) break;
 	}
 	return r;

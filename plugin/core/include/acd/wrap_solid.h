@@ -4,6 +4,7 @@
 
 #include "acd/mesh.h"
 
+#include <optional>
 #include <string>
 
 namespace acd {
@@ -17,6 +18,7 @@ struct WrapSolidResult
 	double      inside  = 1;        // share of the input's interior samples inside the wrap kept
 	int         tries   = 0;        // wraps computed (the last one is not always the one kept)
 	std::string reason;             // why the input was not used as given
+	std::optional<Solid> solid;     // make_solid(mesh), when not wrapped: no need to validate it again
 };
 
 // Vertices within `eps` of an earlier vertex merged into it, faces that collapse or repeat dropped:
