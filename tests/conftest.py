@@ -181,7 +181,7 @@ def interior_samples(V, F, n, rng):
 
 def hull_within(V, F, tau_abs, label="part"):
     """Assert the part's convex hull lies within tau of the part, measured independently
-    (tests/hull_reach.py: scipy's Qhull and exact point-triangle distances), with a slack of 1% of tau.
+    (tests/hull_reach.py: scipy's Qhull and libigl's exact point-triangle distances), with a slack of 1% of tau.
     Returns the attained distance."""
     from hull_reach import hull_reach
     lower, upper = hull_reach(V, F, slack=0.01 * tau_abs, limit=tau_abs)

@@ -1,6 +1,6 @@
 """How far a part's convex hull reaches beyond the part: the largest distance from a point of the hull's
-surface to the part's surface, measured here with scipy's hull (Qhull) and exact point-triangle
-distances in numpy; nothing is shared with the core.
+surface to the part's surface, measured here with scipy's hull (Qhull) and libigl's exact point-triangle distances (an
+AABB tree); nothing is shared with the core.
 
 The distance to a surface is 1-Lipschitz, so a hull triangle whose centre lies at distance d and whose
 corners lie within R of that centre holds no point farther than d + R. Triangles are split in four
@@ -10,69 +10,14 @@ import numpy as np
 from scipy.spatial import ConvexHull
 
 
-def point_surface_distance(P, V, F, chunk=4096):
-    """Exact distance from each point of P to the triangle surface (V, F), and the nearest face.
-    Candidate faces come from a k-d tree of face centres: a face can only be the nearest if its
-    bounding sphere reaches within the best upper bound found among the nearest centres. Faces much
-    larger than the typical one (long cut caps, CAD strips) would widen every query to the whole
-    surface, so they enter the tree as pieces (split in four until small; the distance to a face is
-    the least over its pieces). Points go in chunks of a bounded number of candidate pairs."""
-    from scipy.spatial import cKDTree
-    P = np.atleast_2d(np.asarray(P, float))
-    A, B, C = V[F[:, 0]], V[F[:, 1]], V[F[:, 2]]
-    owner = np.arange(len(F))
-    radius = _radius(A, B, C)
-    # The largest piece: a few times the typical face, raised until the pieces number at most ~500k
-    # (a face of radius r becomes 4^ceil(log2(r / cap)) pieces).
-    cap = 4 * np.median(radius) + 1e-9 * np.ptp(V, 0).max()
-    pieces = lambda cap: (4.0 ** np.ceil(np.log2(np.maximum(radius / cap, 1)))).sum()   # noqa: E731
-    while pieces(cap) > 500_000:
-        cap *= 1.5
-    big = radius > cap
-    while big.any():
-        a, b, c, o = A[big], B[big], C[big], owner[big]
-        ab, bc, ca = (a + b) / 2, (b + c) / 2, (c + a) / 2
-        pieces = [(a, ab, ca), (ab, b, bc), (ca, bc, c), (ab, bc, ca)]
-        A = np.concatenate([A[~big]] + [t[0] for t in pieces])
-        B = np.concatenate([B[~big]] + [t[1] for t in pieces])
-        C = np.concatenate([C[~big]] + [t[2] for t in pieces])
-        owner = np.concatenate([owner[~big]] + [o] * 4)
-        radius = _radius(A, B, C)
-        big = radius > cap
-    centre = (A + B + C) / 3
-    tree = cKDTree(centre)
-    dist, face = np.empty(len(P)), np.empty(len(P), np.int64)
-    k = min(8, len(A))
-    dk, ik = tree.query(P, k=k)
-    dk, ik = dk.reshape(len(P), k), ik.reshape(len(P), k)
-    ub = (dk + radius[ik]).min(1)
-    reach = ub + radius.max()
-    count = tree.query_ball_point(P, reach, return_length=True)
-    # Chunks of points holding at most `budget` candidate pairs (a point far from a dense surface
-    # has many faces within its bound; it goes alone if need be).
-    budget = 4_000_000
-    ends = np.searchsorted(np.cumsum(count), np.arange(budget, int(count.sum()) + budget, budget), side="right")
-    bounds = np.unique(np.concatenate([[0], np.maximum(ends, 1), [len(P)]]).clip(0, len(P)))
-    for lo, hi in zip(bounds[:-1], bounds[1:]):
-        for lo2 in range(lo, hi, chunk):
-            hi2 = min(hi, lo2 + chunk)
-            Q = P[lo2:hi2]
-            near = tree.query_ball_point(Q, reach[lo2:hi2])
-            rows = np.repeat(np.arange(len(Q)), [len(n) for n in near])
-            cols = np.fromiter((c for n in near for c in n), np.int64, len(rows))
-            keep = np.sqrt(((Q[rows] - centre[cols]) ** 2).sum(1)) - radius[cols] <= ub[lo2 + rows]
-            rows, cols = rows[keep], cols[keep]
-            d = _point_triangle(Q[rows], A[cols], B[cols], C[cols])
-            order = np.lexsort((d, rows))   # by point, nearest first
-            first = order[np.r_[True, rows[order][1:] != rows[order][:-1]]]
-            dist[lo2 + rows[first]] = d[first]
-            face[lo2 + rows[first]] = owner[cols[first]]
-    return dist, face
-
-
-def _radius(A, B, C):
-    centre = (A + B + C) / 3
-    return np.sqrt(np.max([((X - centre) ** 2).sum(1) for X in (A, B, C)], axis=0))
+def point_surface_distance(P, V, F):
+    """Exact distance from each point of P to the triangle surface (V, F), and the nearest face:
+    libigl's AABB tree over the triangles (point_mesh_squared_distance)."""
+    import igl
+    P = np.ascontiguousarray(np.atleast_2d(np.asarray(P, float)))
+    sq, face, _ = igl.point_mesh_squared_distance(P, np.ascontiguousarray(V, float),
+                                                  np.ascontiguousarray(F, np.int64))
+    return np.sqrt(np.maximum(sq, 0)), np.asarray(face, np.int64)
 
 
 def _point_triangle(p, a, b, c):

@@ -1,4 +1,4 @@
-"""Batch decomposition (issue 11): `python -m pymeshlab_acd batch` on a folder of meshes, locally with 2
+"""Batch decomposition: `python -m pymeshlab_acd batch` on a folder of meshes, locally with 2
 workers and on a local 2-worker Ray instance; resumable; failures recorded without stopping the batch.
 Each output is re-measured here: the parts' volumes add up to the input's."""
 import csv

@@ -3,7 +3,7 @@
 Low-poly machine parts (bores, slots, keyways, flanges, steps) are where a concavity measured only at
 vertices can miss how far a hull stands off its part. Each solid is made exactly with manifold3d and
 decomposed with every cut_plane_selection at three taus; each part's hull distance is measured again
-with scipy and numpy (tests/hull_reach.py), sharing no code with the core, with a slack of 1% of tau.
+with scipy and libigl (tests/hull_reach.py), sharing no code with the core, with a slack of 1% of tau.
 """
 import numpy as np
 import pymeshlab

@@ -1,4 +1,4 @@
-"""compute_scalar_by_notch_concavity through pymeshlab (issue 3)."""
+"""compute_scalar_by_notch_concavity through pymeshlab."""
 import math
 import os
 

@@ -1,4 +1,4 @@
-"""generate_approximate_convex_decomposition through pymeshlab (issue 4).
+"""generate_approximate_convex_decomposition through pymeshlab.
 
 Every check is independent of the core's own report: volumes, closedness, overlap and concavity
 are measured again here (concavity through the separate concavity filter on each part, and each

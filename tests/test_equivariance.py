@@ -1,4 +1,4 @@
-"""The same object in any pose, unit or file order gets the same decomposition (issue 13).
+"""The same object in any pose, unit or file order gets the same decomposition.
 
 Parts are compared by their count and their sorted volumes (measured here, not read from the
 filter); when a rotated run differs, its hull error (measured here with pymeshlab's Hausdorff

@@ -1,4 +1,4 @@
-"""Physics-ready export (issue 11): URDF loaded by PyBullet, MJCF by MuJoCo, a drop onto a plane in each,
+"""Physics-ready export: URDF loaded by PyBullet, MJCF by MuJoCo, a drop onto a plane in each,
 a MeshLab project with one layer per part, and mass properties checked against trimesh.
 
 The trough test shows the simulators really collide with the parts: a ball dropped into a U-shaped

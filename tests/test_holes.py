@@ -1,4 +1,4 @@
-"""Cavities (the paper's hole boundaries in 3D) and genus through pymeshlab (issue 5).
+"""Cavities (the paper's hole boundaries in 3D) and genus through pymeshlab.
 
 Every check is independent of the core's report: closedness, shells, volumes and concavity are
 measured again here (concavity through the separate notch-concavity filter on each part).

@@ -1,4 +1,4 @@
-"""generate_polygon_approximate_convex_decomposition through pymeshlab (issue 6; holes: issue 5).
+"""generate_polygon_approximate_convex_decomposition through pymeshlab (with holes).
 
 Checks are independent of the core: each piece's outline is read back from its layer's edges, its
 concavity is measured again here (a numpy version of the paper's Algorithm 5.1: hull, bridges,

@@ -1,4 +1,4 @@
-"""Skeleton and hull-union simplification from the decomposition (issue 7, part). Checked here:
+"""Skeleton and hull-union simplification from the decomposition. Checked here:
 skeleton points inside the mesh (ray parity in numpy), connectivity (union-find), the union's volume
 IoU re-estimated in numpy, face counts."""
 import re

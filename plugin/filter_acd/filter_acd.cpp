@@ -548,6 +548,9 @@ FilterACD::decompose(const RichParameterList& par, MeshDocument& md, vcg::CallBa
 	    idx, o.tau, d.max_leaf_concavity(), d.max_hull_distance(), secs,
 	    d.max_parts_reached ? " (max_parts reached: some parts exceed tau)" : "");
 	if (uncut > 0) log("Warning: %d parts above tau could not be cut by any candidate plane", uncut);
+	if (d.films_dropped > 0)
+		log("%d zero-thickness films (volume %g) no plane could split were dropped from parts", d.films_dropped,
+		    d.film_volume);
 	if (d.kept_cavities > 0)
 		log("Warning: %d cavities were kept inside parts (keep_cavities); those parts are not tau-convex.",
 		    d.kept_cavities);
@@ -562,6 +565,7 @@ FilterACD::decompose(const RichParameterList& par, MeshDocument& md, vcg::CallBa
 		{"max_parts_reached", d.max_parts_reached},
 		{"time_limit_reached", d.time_limit_reached},
 		{"uncut_parts", uncut},
+		{"films_dropped", d.films_dropped},
 		{"tree_nodes", (int) d.nodes.size()},
 		{"alpha_wrapped", run.wrap_alpha > 0},
 		{"wrap_alpha_used", run.wrap_alpha},

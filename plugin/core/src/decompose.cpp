@@ -20,6 +20,7 @@
 #include <queue>
 #include <set>
 #include <sstream>
+#include <unordered_map>
 
 namespace acd {
 
@@ -551,6 +552,7 @@ Decomposition decompose_normalized(const Solid& solid, const DecomposeOptions& o
 		return A.path > B.path;
 	};
 	std::priority_queue<int, std::vector<int>, decltype(worse)> open(worse);
+	std::unordered_map<int, int> films;   // per node: films dropped (bounded, so a node cannot loop)
 	for (int id : first_open) open.push(id);
 	int parts = (int) first_open.size();
 	while (!open.empty()) {
@@ -627,6 +629,7 @@ Decomposition decompose_normalized(const Solid& solid, const DecomposeOptions& o
 			bool         ok = false;
 			bool         crosses = false;   // keep_cavities: the plane cuts through a kept cavity
 			double       score = 0, sum = 0;
+			int          sliver = -1;       // the side a rejected plane shaved off
 		};
 		std::vector<Trial> trials(planes.size());
 		const double       v0 = D.nodes[id].volume;
@@ -635,7 +638,11 @@ Decomposition decompose_normalized(const Solid& solid, const DecomposeOptions& o
             t        = Trial();
             if (!separate(mesh, planes[i], notch, t.so)) return;
             // A plane that grazes the part shaves off a sliver and resolves nothing.
-            if (signed_volume(t.so.parts[0]) < 1e-5 * v0 || signed_volume(t.so.parts[1]) < 1e-5 * v0) return;
+            const double va = signed_volume(t.so.parts[0]), vb = signed_volume(t.so.parts[1]);
+            if (va < 1e-5 * v0 || vb < 1e-5 * v0) {
+                t.sliver = va < vb ? 0 : 1;
+                return;
+            }
             if (keep)
                 for (const auto& c : ms.cavities) {
                     bool neg = false, pos = false;
@@ -731,6 +738,31 @@ Decomposition decompose_normalized(const Solid& solid, const DecomposeOptions& o
 					run_trial(planes.size() - 1, false);
 					if (trials.back().ok) pick = (int) planes.size() - 1;
 				}
+		}
+		// Still none: the part may carry a film, two sheets of its surface a rounding error apart (a cut
+		// plane a hair off a flat face leaves one). It holds no volume, yet its hull may reach far: drop
+		// the widest film a plane shaves off, and measure the rest again.
+		if (pick < 0 && films[id] < 8) {
+			int    drop = -1;
+			double widest = 0;
+			const double size = extent(mesh.V);
+			for (int i = 0; i < (int) trials.size(); ++i) {
+				if (trials[i].sliver < 0) continue;
+				const TriMesh& f = trials[i].so.parts[trials[i].sliver];
+				const double   a = surface_area(f);
+				if (std::abs(signed_volume(f)) <= 0.5e-6 * size * a && a > widest) widest = a, drop = i;
+			}
+			if (drop >= 0) {
+				Trial& t = trials[drop];
+				++films[id];
+				++D.films_dropped;
+				D.film_volume += std::abs(signed_volume(t.so.parts[t.sliver]));
+				D.nodes[id].mesh = std::move(t.so.parts[1 - t.sliver]);
+				measured[id].reset();
+				measure_node(id);
+				open.push(id);
+				continue;
+			}
 		}
 		const bool   found = pick >= 0;
 		SplitOutcome best;

@@ -50,6 +50,13 @@ double signed_volume(const TriMesh& m)
 	return v / 6.0;
 }
 
+double surface_area(const TriMesh& m)
+{
+	double a = 0;
+	for (const Tri& t : m.F) a += (m.V[t[1]] - m.V[t[0]]).cross(m.V[t[2]] - m.V[t[0]]).norm();
+	return a / 2;
+}
+
 void append(TriMesh& to, const TriMesh& from)
 {
 	const int o = (int) to.V.size();

@@ -77,6 +77,8 @@ struct Decomposition
 	bool              time_limit_reached = false;
 	int               hole_cuts = 0;       // cuts made to resolve cavities
 	int               kept_cavities = 0;   // cavities left in the parts (keep_cavities)
+	int               films_dropped = 0;   // zero-thickness films cut off parts no plane could split
+	double            film_volume = 0;     // the volume they held (rounding: near 0)
 	// Leaves in a stable order (by tree path).
 	std::vector<int> leaves() const;
 	double           max_leaf_concavity() const;

@@ -53,6 +53,7 @@ struct Solid
 Solid make_solid(const TriMesh& input);
 
 double signed_volume(const TriMesh& m);
+double surface_area(const TriMesh& m);
 // Adds `from`'s vertices and faces to `to` (disjoint union).
 void append(TriMesh& to, const TriMesh& from);
 double bbox_diagonal(const std::vector<Vec3>& pts);
