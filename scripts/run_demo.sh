@@ -12,7 +12,7 @@ python3 -m pymeshlab_acd concavity --demo --no-progress --out "$out"
 for tau in 8 4; do
 	echo
 	echo "== Approximate convex decomposition, tau = $tau% of the bunny's size =="
-	python3 -m pymeshlab_acd decompose --demo --tau "$tau" --hulls --out "$out/tau_$tau"
+	python3 -m pymeshlab_acd decompose --demo --tau "$tau" --tree --out "$out/tau_$tau"
 done
 echo
 echo "== From the tree: a coarser level without recomputing, the skeleton, the hull union (tau = 3%) =="

@@ -87,3 +87,63 @@ def test_cli_checks_arguments_before_any_work(tmp_path):
     assert r.returncode == 2 and "is a file" in r.stderr
     r = _cli("decompose", "--demo", "--export")
     assert r.returncode == 2 and "give --out" in r.stderr
+
+
+def test_every_subcommand_starts_from_the_same_defaults():
+    """One table (pymeshlab_acd.options.DEFAULTS) behind decompose and batch, shown in --help."""
+    from pymeshlab_acd.__main__ import main
+    from pymeshlab_acd.options import DEFAULTS
+    import argparse
+    seen = {}
+    real = argparse.ArgumentParser.parse_args
+
+    def capture(self, args=None, namespace=None):
+        ns = real(self, args, namespace)
+        seen[ns.cmd] = vars(ns)
+        raise SystemExit(0)
+    argparse.ArgumentParser.parse_args = capture
+    try:
+        for argv in (["decompose", "x.obj"], ["batch", "in", "out"]):
+            with pytest.raises(SystemExit):
+                main(argv)
+    finally:
+        argparse.ArgumentParser.parse_args = real
+    for cmd in ("decompose", "batch"):
+        for k, v in DEFAULTS.items():
+            assert seen[cmd][k] == v, (cmd, k)
+    assert seen["decompose"]["preprocessing"] == "auto"
+    r = _cli("decompose", "--help")
+    assert "(default: 2.0)" in r.stdout and "(default: auto)" in r.stdout
+
+
+def test_cli_writes_one_hulls_file_and_draws_one_progress_line(tmp_path):
+    """Default output: hulls.obj with one object per hull and parts.obj with the parts, their volumes
+    re-measured here; progress is one redrawn line, without pymeshlab's parameter dump."""
+    V, F = extrude(U_SHAPE, 0, 1)
+    ms = pymeshlab.MeshSet()
+    add_mesh(ms, V, F)
+    ms.save_current_mesh(str(tmp_path / "u.obj"))
+    r = _cli("decompose", str(tmp_path / "u.obj"), "--tau", "0.1", "--tau-unit", "model_units",
+             "--out", str(tmp_path / "o"))
+    assert r.returncode == 0, r.stderr
+    assert "Applying filter" not in r.stderr and "'tau'" not in r.stderr
+    assert "[" + "#" * 24 + "] 100%" in r.stderr and "LOG:" not in r.stderr
+    assert sorted(p.name for p in (tmp_path / "o").iterdir()) == ["hulls.obj", "parts.obj", "summary.json"]
+
+    def objects(path):
+        out, V = [], []
+        for line in path.read_text().splitlines():
+            if line.startswith("o "):
+                out.append([])
+            elif line.startswith("v "):
+                V.append([float(x) for x in line.split()[1:]])
+            elif line.startswith("f "):
+                out[-1].append([int(x) - 1 for x in line.split()[1:]])
+        V = np.array(V)
+        return [(V[np.unique(f)], np.searchsorted(np.unique(f), np.array(f))) for f in out]
+    hulls, parts = objects(tmp_path / "o" / "hulls.obj"), objects(tmp_path / "o" / "parts.obj")
+    assert len(hulls) == len(parts) == 3
+    assert abs(sum(volume(*p) for p in parts) - volume(V, F)) < 1e-6
+    for Vh, Fh in hulls:
+        assert is_closed_manifold(Fh)
+        assert abs(volume(Vh, Fh) - ConvexHull(Vh).volume) < 1e-6

@@ -113,7 +113,7 @@ def test_skeleton_under_noise(name):
     means = skeleton_distances(path, range(1, 9))
     print(f"{name} skeleton, noise 0.5% of the diagonal, seeds 1-8: mean distance "
           + ", ".join(f"{m:.4f}" for m in means) + f" of the diagonal (average {np.mean(means):.4f})")
-    # The bound is 2%. Measured: all 16 draws below it, the worst at 0.019997 (README); a draw
+    # The target is 2%. Measured: all 16 draws below it, the worst at 0.019997 (docs/parameters.md); a draw
     # can swap the order of two near-equal notches, so one draw is allowed a little more.
     assert np.mean(means) < 0.02 and max(means) < 0.025
 

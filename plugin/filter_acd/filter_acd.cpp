@@ -440,7 +440,7 @@ FilterACD::Run FilterACD::runDecomposition(const RichParameterList& par, MeshMod
 		if (finite.empty()) throw MLException("The mesh has no vertex with finite coordinates.");
 		const double d0 = acd::enclosing_diameter(finite), alpha = par.getFloat("wrap_alpha");
 		const double offset = par.getFloat("wrap_offset") / 100 * d0;
-		if (cb) cb(0, "Alpha wrapping the input...");
+		if (cb) cb(0, par.getEnum("preprocessing") == 1 ? "Alpha wrapping the input..." : "Checking the input (as given, welded or wrapped)...");
 		const size_t before = raw.F.size();
 		if (par.getEnum("preprocessing") == 1) {
 			raw           = acd::alpha_wrap(raw, alpha / 100 * d0, offset);

@@ -2,8 +2,9 @@
               python -m pymeshlab_acd polygon POLYGON [options]
               python -m pymeshlab_acd batch IN_DIR OUT_DIR [--workers N] [--ray ADDRESS|local] [options]
 
-MESH is a mesh file; --demo takes pymeshlab's bundled bunny instead. POLYGON is a .poly, .svg or plain list-of-loops file (see
-pymeshlab_acd.polygon_io). Progress is printed while the filter runs.
+MESH is a mesh file; --demo takes pymeshlab's bundled bunny instead. POLYGON is a .poly, .svg or plain
+list-of-loops file (see pymeshlab_acd.polygon_io). Every subcommand starts from the same defaults
+(pymeshlab_acd.options); a one-line progress bar is drawn on stderr while a filter runs.
 """
 import argparse
 import json
@@ -19,22 +20,34 @@ from . import decompose, decompose_polygon, level_of_detail, load, mesh_ids
 from . import polygon_io
 from .batch import DEFAULTS as BATCH
 from .export import export_decomposition
+from .options import DEFAULTS, add_arguments
+from .progress import ProgressBar
 
 BUNNY = os.path.join(os.path.dirname(pymeshlab.__file__), "tests", "sample_meshes", "bunny.obj")
 
 
-def _meshset(path, verbose):
+def _meshset(path):
     load()
     ms = pymeshlab.MeshSet()
     ms.load_new_mesh(str(path))
-    ms.set_verbosity(verbose)   # prints MeshLab's progress callback ("... [ 40% ]")
     return ms
 
 
+def _write_objects(path, meshes, prefix):
+    """One OBJ holding every mesh as its own object (`o <prefix>_<k>`), as CoACD and V-HACD write hulls."""
+    with open(path, "w") as f:
+        base = 1
+        for k, (V, F) in enumerate(meshes):
+            f.write(f"o {prefix}_{k}\n")
+            f.writelines(f"v {x:.9g} {y:.9g} {z:.9g}\n" for x, y, z in V)
+            f.writelines(f"f {a + base} {b + base} {c + base}\n" for a, b, c in F)
+            base += len(V)
+
+
 def cmd_concavity(a):
-    ms = _meshset(a.mesh, a.progress)
-    r = ms.compute_scalar_by_notch_concavity()
-    ms.set_verbosity(False)
+    ms = _meshset(a.mesh)
+    with ProgressBar(ms, a.progress):
+        r = ms.compute_scalar_by_notch_concavity()
     m = ms.current_mesh()
     print(f"mesh            {a.mesh}  ({m.vertex_number()} vertices, {m.face_number()} faces)")
     print(f"notches         {r['notches']}")
@@ -51,17 +64,17 @@ def cmd_concavity(a):
 
 
 def cmd_decompose(a):
-    ms = _meshset(a.mesh, a.progress)
+    ms = _meshset(a.mesh)
     src = ms.current_mesh_id()
     params = dict(tau=a.tau, tau_unit=a.tau_unit, cut_plane_selection=a.cut_plane_selection,
-                  max_parts=a.max_parts, output_hulls=a.hulls or a.export, max_hull_vertices=a.max_hull_vertices,
+                  max_parts=a.max_parts, output_hulls=bool(a.hulls or a.out), max_hull_vertices=a.max_hull_vertices,
                   time_limit=a.time_limit, preprocessing=a.preprocessing, wrap_alpha=a.wrap_alpha,
                   wrap_offset=a.wrap_offset, on_self_intersection=a.on_self_intersection,
                   hole_handling=a.hole_handling, hole_order=a.hole_order)
     t0 = time.perf_counter()
-    res, ids = decompose(ms, **params)
+    with ProgressBar(ms, a.progress):
+        res, ids = decompose(ms, with_tree=a.tree, **params)
     wall = time.perf_counter() - t0
-    ms.set_verbosity(False)   # progress is over; keep the file saving quiet
     print(f"mesh             {a.mesh}  ({ms.mesh(src).face_number()} faces)")
     print(f"tau              {a.tau} {a.tau_unit} = {res['tau_model_units']:.6g} model units")
     print(f"parts            {res['parts']}")
@@ -74,38 +87,49 @@ def cmd_decompose(a):
               + (f"; {res['kept_cavities']} kept inside parts (not tau-convex)" if res["kept_cavities"] else ""))
     if res.get("self_intersections"):
         print(f"note             the mesh intersects itself ({res['self_intersections']} face pairs cross)")
+    if res.get("wrap_alpha_used"):
+        print(f"preprocessing    alpha-wrapped at {res['wrap_alpha_used']:.3g}% (the input is not a closed solid)")
+    elif res.get("welded_vertices"):
+        print(f"preprocessing    {res['welded_vertices']} duplicate vertices welded")
+    if not res.get("tau_convex", True):
+        print("note             not every part is certified within tau (see the log above)")
     if a.out:
         out = pathlib.Path(a.out)
         out.mkdir(parents=True, exist_ok=True)
-        for i in ids:
-            m = ms.mesh(i)
-            ms.set_current_mesh(i)
-            ms.save_current_mesh(str(out / f"{m.label()}.obj"))
-        (out / "tree.json").write_text(json.dumps(res["tree"], indent=1))
+        hulls = [i for i in ids if ms.mesh(i).label().startswith("acd_hull_")]
+        parts = [i for i in ids if i not in hulls]
+        arrays = lambda layers: [(ms.mesh(i).vertex_matrix(), ms.mesh(i).face_matrix()) for i in layers]  # noqa: E731
+        _write_objects(out / "hulls.obj", arrays(hulls), "hull")
+        _write_objects(out / "parts.obj", arrays(parts), "part")
         summary = {k: v for k, v in res.items() if k != "tree"}
         (out / "summary.json").write_text(json.dumps(summary, indent=1, default=float))
-        print(f"wrote            {len(ids)} layers as OBJ, tree.json, summary.json to {out}")
+        wrote = ["hulls.obj", "parts.obj", "summary.json"]
+        if a.part_files:
+            for i in ids:
+                ms.set_current_mesh(i)
+                ms.save_current_mesh(str(out / f"{ms.mesh(i).label()}.obj"))
+            wrote.append(f"{len(ids)} layer OBJs")
+        if a.tree:
+            (out / "tree.json").write_text(json.dumps(res["tree"], indent=1))
+            wrote.append("tree.json")
+        print(f"wrote            {', '.join(wrote)} to {out}")
         if a.export:
-            hulls = [i for i in ids if ms.mesh(i).label().startswith("acd_hull_")]
-            parts = [i for i in ids if i not in hulls]
             w = export_decomposition(ms, src, parts, hulls, out / "export", name=pathlib.Path(a.mesh).stem,
                                      scale=a.scale, density=a.density)
             print(f"exported         {len(hulls)} collision hulls (OBJ, STL), {w['urdf'][0]}, {w['mjcf'][0]}, "
                   f"{w['mlp'][0]} to {out / 'export'}")
-    elif a.export:
-        raise ValueError("--export needs --out")
     return 0
 
 
 def cmd_structure(a):
     """What the tree gives (the paper's Section 7, Figure 18): a coarser level read back from the saved tree,
     the skeleton (its points checked against the mesh by MeshLab's own signed distance), the hull union."""
-    ms = _meshset(a.mesh, a.progress)
+    ms = _meshset(a.mesh)
     src = ms.current_mesh_id()
     out = pathlib.Path(a.out)
     out.mkdir(parents=True, exist_ok=True)
-    res, _ = decompose(ms, tau=a.tau, tree_file=str(out / "tree.json"))
-    ms.set_verbosity(False)
+    with ProgressBar(ms, a.progress):
+        res, _ = decompose(ms, tau=a.tau, tree_file=str(out / "tree.json"))
     print(f"mesh             {a.mesh}  ({ms.mesh(src).face_number()} faces)")
     print(f"decomposition    tau {a.tau}%: {res['parts']} parts in {res['time']:.2f} s, tree saved to {out / 'tree.json'}")
     t0 = time.perf_counter()
@@ -132,11 +156,11 @@ def cmd_structure(a):
           f"{out / 'skeleton.obj'}")
 
     ms.set_current_mesh(src)
-    hu = ms.generate_convex_hull_union(tau=a.tau, max_hull_vertices=a.max_hull_vertices)
+    hu = ms.generate_convex_hull_union(tau=a.tau, max_hull_vertices=a.union_hull_vertices)
     union = [i for i in mesh_ids(ms) if ms.mesh(i).label() == "acd_hull_union"][-1]
     ms.set_current_mesh(union)
     ms.save_current_mesh(str(out / "hull_union.obj"))
-    print(f"hull union       {hu['hulls']} hulls of at most {a.max_hull_vertices} vertices: {hu['union_faces']} "
+    print(f"hull union       {hu['hulls']} hulls of at most {a.union_hull_vertices} vertices: {hu['union_faces']} "
           f"faces from {hu['input_faces']} ({hu['face_reduction']:.1f}x fewer), volume IoU with the mesh "
           f"{hu['volume_iou']:.3f} +- {hu['volume_iou_stderr']:.3f}; {out / 'hull_union.obj'}")
     if sk["components"] != 1 or inside < 0.99:
@@ -181,11 +205,10 @@ def cmd_polygon(a):
     V, E = polygon_io.loops_to_mesh(loops)
     ms = pymeshlab.MeshSet()
     ms.add_mesh(pymeshlab.Mesh(vertex_matrix=V, edge_matrix=E), pathlib.Path(a.polygon).stem)
-    ms.set_verbosity(a.progress)
     params = dict(tau=a.tau, tau_unit=a.tau_unit, cut_line_selection=a.cut_line_selection,
                   hole_handling=a.hole_handling, hole_order=a.hole_order, max_parts=a.max_parts)
-    res, ids = decompose_polygon(ms, **params)
-    ms.set_verbosity(False)
+    with ProgressBar(ms, a.progress):
+        res, ids = decompose_polygon(ms, **params)
     print(f"polygon          {a.polygon}  ({len(V)} vertices in {len(loops)} loops)")
     print(f"polygons         {res['polygons']}, holes {res['holes']}, notches {res['notches']}")
     print(f"tau              {a.tau} {a.tau_unit} = {res['tau_model_units']:.6g} units")
@@ -221,57 +244,52 @@ def _in_plane(V):
 
 
 def main(argv=None):
-    p = argparse.ArgumentParser(prog="python -m pymeshlab_acd",
+    fmt = argparse.ArgumentDefaultsHelpFormatter
+    p = argparse.ArgumentParser(prog="python -m pymeshlab_acd", formatter_class=fmt,
                                 description="Approximate convex decomposition (Lien & Amato) through pymeshlab.")
     p.add_argument("--version", action="version", version=f"%(prog)s {_version()}")
     sub = p.add_subparsers(dest="cmd", required=True)
-    c = sub.add_parser("concavity", help="measure notch concavity (compute_scalar_by_notch_concavity)")
-    d = sub.add_parser("decompose", help="decompose (generate_approximate_convex_decomposition)")
-    g = sub.add_parser("polygon", help="decompose a 2D polygon with holes "
-                                       "(generate_polygon_approximate_convex_decomposition)")
+    c = sub.add_parser("concavity", formatter_class=fmt, help="measure notch concavity (compute_scalar_by_notch_concavity)")
+    d = sub.add_parser("decompose", formatter_class=fmt, help="decompose (generate_approximate_convex_decomposition)")
+    g = sub.add_parser("polygon", formatter_class=fmt, help="decompose a 2D polygon with holes "
+                                                            "(generate_polygon_approximate_convex_decomposition)")
     g.add_argument("polygon", help=".poly, .svg or plain text file of loops")
     g.add_argument("--out", help="folder for the pieces (PLY), pieces.svg, tree.json, summary.json")
-    g.add_argument("--no-progress", dest="progress", action="store_false", help="do not print progress")
-    g.add_argument("--tau", type=float, default=1.0, help="concavity tolerance (default 1 = 1%% of size)")
-    g.add_argument("--tau-unit", default="percent_of_size", choices=["percent_of_size", "model_units"])
+    g.add_argument("--no-progress", dest="progress", action="store_false", help="no progress bar")
+    add_arguments(g, "tau", "tau_unit", "max_parts")
     g.add_argument("--cut-line-selection", default="best", choices=["best", "bisector"])
     g.add_argument("--hole-handling", default="best_plane", choices=["best_plane", "principal_plane", "keep_cavities"],
                    help="holes: the best of several lines, the principal axis (the paper), or kept")
     g.add_argument("--hole-order", default="first", choices=["first", "by_concavity"])
-    g.add_argument("--max-parts", type=int, default=0)
     for s in (c, d):
         s.add_argument("mesh", nargs="?", help="mesh file (closed, or see --preprocessing)")
         s.add_argument("--demo", action="store_true", help="use pymeshlab's bundled bunny as MESH")
-        s.add_argument("--out", help="folder for output files")
-        s.add_argument("--no-progress", dest="progress", action="store_false", help="do not print progress")
-    d.add_argument("--tau", type=float, default=2.0, help="concavity tolerance (default 2 = 2%% of size)")
-    d.add_argument("--tau-unit", default="percent_of_size", choices=["percent_of_size", "model_units"])
-    d.add_argument("--cut-plane-selection", default="best", choices=["best", "bisector", "min_section"])
-    d.add_argument("--max-parts", type=int, default=0)
+        s.add_argument("--no-progress", dest="progress", action="store_false", help="no progress bar")
+    c.add_argument("--out", help="folder for concavity.ply (vertex quality = concavity)")
+    d.add_argument("--out", help="folder for hulls.obj (one object per hull), parts.obj and summary.json")
+    add_arguments(d, "tau", "tau_unit", "cut_plane_selection", "max_parts", "max_hull_vertices", "preprocessing",
+                  "wrap_alpha", "wrap_offset", "time_limit")
     d.add_argument("--hole-handling", default="best_plane", choices=["best_plane", "principal_plane", "keep_cavities"],
                    help="how cavities (closed inner shells) are resolved")
     d.add_argument("--hole-order", default="first", choices=["first", "by_concavity"],
                    help="cut cavities before notches (the paper) or in turn by concavity")
-    d.add_argument("--hulls", action="store_true", help="also output each part's convex hull")
-    d.add_argument("--max-hull-vertices", type=int, default=0)
-    d.add_argument("--time-limit", type=float, default=0.0)
-    d.add_argument("--preprocessing", default="none", choices=["none", "alpha_wrap", "auto"],
-                   help="alpha_wrap: wrap dirty input (open, non-manifold, self-intersecting, points) first; "
-                        "auto: as given if it is a valid solid, else wrapped (alpha doubled while the wrap is hollow)")
-    d.add_argument("--wrap-alpha", type=float, default=1.0, help="alpha wrap: alpha, %% of size")
-    d.add_argument("--wrap-offset", type=float, default=0.1, help="alpha wrap: offset, %% of size")
     d.add_argument("--on-self-intersection", default="warn", choices=["warn", "refuse"])
+    d.add_argument("--hulls", action="store_true", help="also add each part's hull as a layer (always with --out)")
+    d.add_argument("--part-files", action="store_true", help="also write every part and hull as its own OBJ")
+    d.add_argument("--tree", action="store_true", help="also write the cut tree as tree.json")
     d.add_argument("--export", action="store_true",
                    help="also write collision hulls (OBJ, STL), a URDF, an MJCF and a MeshLab project to OUT/export")
-    st = sub.add_parser("structure", help="from the tree: a coarser level, the skeleton, the hull union")
+    st = sub.add_parser("structure", formatter_class=fmt,
+                        help="from the tree: a coarser level, the skeleton, the hull union")
     st.add_argument("mesh", nargs="?", help="closed mesh file")
     st.add_argument("--demo", action="store_true", help="use pymeshlab's bundled bunny as MESH")
     st.add_argument("--out", required=True, help="folder for tree.json, skeleton.obj, hull_union.obj")
-    st.add_argument("--no-progress", dest="progress", action="store_false", help="do not print progress")
-    st.add_argument("--tau", type=float, default=3.0, help="concavity tolerance (default 3 = 3%% of size)")
-    st.add_argument("--coarser", type=float, default=6.0, help="coarser tau read back from the tree (%% of size)")
-    st.add_argument("--max-hull-vertices", type=int, default=64, help="per hull of the union")
-    b = sub.add_parser("batch", help="decompose every mesh under a folder, with physics-ready export")
+    st.add_argument("--no-progress", dest="progress", action="store_false", help="no progress bar")
+    add_arguments(st, "tau")
+    st.add_argument("--coarser", type=float, default=3 * DEFAULTS["tau"],
+                    help="coarser tau read back from the tree (%% of the size)")
+    st.add_argument("--union-hull-vertices", type=int, default=64, help="per hull of the hull union")
+    b = sub.add_parser("batch", formatter_class=fmt, help="decompose every mesh under a folder, with physics-ready export")
     b.add_argument("in_dir")
     b.add_argument("out_dir")
     b.add_argument("--workers", type=int, default=os.cpu_count() or 1, help="meshes decomposed at once")
@@ -279,19 +297,8 @@ def main(argv=None):
                    "or auto), or 'local' to start a local Ray instance of --workers CPUs")
     b.add_argument("--ray-runtime-env", metavar="JSON", help="Ray runtime_env for the workers, e.g. "
                    "'{\"pip\": [\"/shared/pymeshlab_acd-0.1.0-py3-none-any.whl\"]}'")
-    b.add_argument("--tau", type=float, default=BATCH["tau"], help="concavity tolerance (default 3 = 3%% of size)")
-    b.add_argument("--tau-unit", default=BATCH["tau_unit"], choices=["percent_of_size", "model_units"])
-    b.add_argument("--cut-plane-selection", default=BATCH["cut_plane_selection"], choices=["best", "bisector", "min_section"])
-    b.add_argument("--max-parts", type=int, default=BATCH["max_parts"])
-    b.add_argument("--max-hull-vertices", type=int, default=BATCH["max_hull_vertices"],
-                   help="per collision hull (0: no limit)")
-    b.add_argument("--preprocessing", default=BATCH["preprocessing"], choices=["auto", "none", "alpha_wrap"],
-                   help="auto: decompose as given, and alpha-wrap the meshes that cannot be")
-    b.add_argument("--wrap-alpha", type=float, default=BATCH["wrap_alpha"],
-                   help="alpha wrap: alpha, %% of size (larger bridges bigger holes in open meshes)")
-    b.add_argument("--wrap-offset", type=float, default=BATCH["wrap_offset"], help="alpha wrap: offset, %% of size")
-    b.add_argument("--time-limit", type=float, default=BATCH["time_limit"],
-                   help="per mesh, in the core (s; 0: none)")
+    add_arguments(b, "tau", "tau_unit", "cut_plane_selection", "max_parts", "max_hull_vertices", "preprocessing",
+                  "wrap_alpha", "wrap_offset", "time_limit")
     b.add_argument("--timeout", type=float, default=BATCH["timeout"],
                    help="per mesh process, killed after (s; 0: none)")
     b.add_argument("--formats", default=",".join(BATCH["formats"]), help="collision hull files: obj, stl or both")

@@ -18,11 +18,11 @@ import sys
 import tempfile
 import time
 
+from . import options
+
 MESH_EXTENSIONS = {".obj", ".ply", ".stl", ".off", ".3ds", ".dae", ".wrl", ".gltf", ".glb", ".vmi"}
 
-DEFAULTS = dict(tau=3.0, tau_unit="percent_of_size", cut_plane_selection="best", max_parts=0,
-                max_hull_vertices=64, preprocessing="auto", wrap_alpha=1.0, wrap_offset=0.1, time_limit=0.0, timeout=1800.0,
-                formats=["obj", "stl"], scale=1.0, density=1000.0, save_tree=False)
+DEFAULTS = dict(options.DEFAULTS, timeout=1800.0, formats=["obj", "stl"], scale=1.0, density=1000.0, save_tree=False)
 
 # The options that change a mesh's outputs (a rerun with other values redoes the mesh).
 _OUTPUT_KEYS = ("tau", "tau_unit", "cut_plane_selection", "max_parts", "max_hull_vertices", "preprocessing",
