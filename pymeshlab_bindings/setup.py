@@ -8,7 +8,7 @@ import pathlib
 import shutil
 import subprocess
 
-from setuptools import setup
+from setuptools import Distribution, setup
 from setuptools.command.build_py import build_py
 
 HERE = pathlib.Path(__file__).resolve().parent
@@ -31,4 +31,11 @@ class BuildWithPlugin(build_py):
         shutil.copy2(built, dest / built.name)
 
 
-setup(cmdclass={"build_py": BuildWithPlugin})
+class BinaryDistribution(Distribution):
+    """The package ships a compiled plugin: its wheel is a platform wheel, not a pure one."""
+
+    def has_ext_modules(self):
+        return True
+
+
+setup(cmdclass={"build_py": BuildWithPlugin}, distclass=BinaryDistribution)

@@ -147,3 +147,18 @@ def test_cli_writes_one_hulls_file_and_draws_one_progress_line(tmp_path):
     for Vh, Fh in hulls:
         assert is_closed_manifold(Fh)
         assert abs(volume(Vh, Fh) - ConvexHull(Vh).volume) < 1e-6
+
+
+def test_bound_filters_document_their_parameters():
+    doc = pymeshlab.MeshSet.generate_approximate_convex_decomposition.__doc__
+    assert "tau : float = 2" in doc and "preprocessing : str = 'none'" in doc and "PercentageValue" in doc
+    for name in pymeshlab_acd.FILTERS:
+        assert "Parameters" in getattr(pymeshlab.MeshSet, name).__doc__
+
+
+def test_an_open_mesh_is_refused_with_this_tools_remedy_first():
+    V, F = extrude(L_SHAPE, 0, 1)
+    with pytest.raises(pymeshlab.PyMeshLabException) as e:
+        pymeshlab_acd.convex_decomposition(V, F[:-1])
+    msg = str(e.value)
+    assert msg.index("preprocessing to 'auto'") < msg.index("Close Holes")

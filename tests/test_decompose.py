@@ -180,7 +180,7 @@ def test_bad_input_gets_a_clear_error(ms, bad):
     V, F = extrude(L_SHAPE, 0, 1)
     if bad == "open":
         add_mesh(ms, V, F[:-2])
-        with pytest.raises(pymeshlab.PyMeshLabException, match="(?s)boundary edges.*Close Holes"):
+        with pytest.raises(pymeshlab.PyMeshLabException, match="(?s)boundary edges.*preprocessing to 'auto'.*Close Holes"):
             pymeshlab_acd.decompose(ms, tau=1.0)
     elif bad == "nonmanifold":
         # two boxes sharing one edge: closed, but that edge has four faces

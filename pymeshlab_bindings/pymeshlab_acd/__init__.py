@@ -69,9 +69,40 @@ def load():
         if not all(name in pymeshlab.filter_list() for name in FILTERS):
             pymeshlab.load_plugin(str(path))   # a second load of the same plugin raises
         for name in FILTERS:
-            setattr(pymeshlab.MeshSet, name, _reset_log_on_error(pymeshlab.bind_function(name)))
+            method = _reset_log_on_error(pymeshlab.bind_function(name))
+            method.__doc__ = _docstring(name)
+            setattr(pymeshlab.MeshSet, name, method)
         _loaded = path
     return _loaded
+
+
+def _docstring(name):
+    """The filter's parameters with their types and defaults, as pymeshlab lists them (it prints them
+    from C++ on the standard output's file descriptor, which is read back here)."""
+    import ctypes
+    import sys
+    import tempfile
+    text = ""
+    try:
+        sys.stdout.flush()
+        with tempfile.TemporaryFile(mode="w+") as tmp:
+            saved = os.dup(1)
+            try:
+                os.dup2(tmp.fileno(), 1)
+                pymeshlab.print_filter_parameter_list(name)
+                ctypes.CDLL(None).fflush(None)
+            finally:
+                os.dup2(saved, 1)
+                os.close(saved)
+            tmp.seek(0)
+            text = tmp.read()
+    except Exception:   # no file descriptors to redirect (an embedded interpreter): the short form
+        pass
+    params = [line.strip() for line in text.splitlines() if line.startswith("\t")]
+    return (f"MeshLab filter {name} (meshlab-acd).\n\nParameters (name : type = default):\n"
+            + "".join(f"    {p}\n" for p in params)
+            + "\ntau also takes pymeshlab.PercentageValue (percent of the bounding-box diagonal) or "
+              "pymeshlab.PureValue (model units).\nWhat each parameter does: docs/parameters.md in meshlab-acd.\n")
 
 
 _anchor = None

@@ -313,12 +313,14 @@ Solid make_solid(const TriMesh& in)
 	}
 	if (boundary > 0)
 		invalid("The mesh is open: it has " + std::to_string(boundary) +
-		        " boundary edges. The decomposition needs a closed (watertight) solid: close the holes "
-		        "with 'Close Holes' (meshing_close_holes) or wrap it with 'Alpha Wrap' (generate_alpha_wrap).");
+		        " boundary edges. The decomposition needs a closed (watertight) solid: set preprocessing to "
+		        "'auto' (welds or alpha-wraps it; CLI --preprocessing auto), or close the holes with 'Close "
+		        "Holes' (meshing_close_holes).");
 	if (nonmanifold > 0)
 		invalid("The mesh has " + std::to_string(nonmanifold) +
-		        " non-manifold edges (shared by more than two faces). Repair it with 'Repair non Manifold "
-		        "Edges' (meshing_repair_non_manifold_edges) or 'Alpha Wrap' (generate_alpha_wrap).");
+		        " non-manifold edges (shared by more than two faces). Set preprocessing to 'auto' (CLI "
+		        "--preprocessing auto), or repair it with 'Repair non Manifold Edges' "
+		        "(meshing_repair_non_manifold_edges).");
 	if (misoriented > 0)
 		invalid("The mesh's faces are not consistently oriented (" + std::to_string(misoriented) +
 		        " edges are used twice in the same direction). Run 'Re-Orient all faces coherently' "
