@@ -135,6 +135,8 @@ def main():
     ap.add_argument("--samples", type=int, default=100000, help="Monte Carlo samples per metric")
     ap.add_argument("--timeout", type=int, default=900, help="seconds per method run")
     ap.add_argument("--out", default=str(REPO / "out" / "robots"))
+    ap.add_argument("--reverse", action="store_true",
+                    help="meshes in reverse order: a second run (with its own --out) meets the first halfway")
     args = ap.parse_args()
     meshes = fetch_corpus()
     files = corpus(meshes)
@@ -162,7 +164,7 @@ def main():
     # still covers every robot side by side.
     quick = set(sample(files, meshes, 20))
     todo_meshes = set(files) | (peer_set if "peers" in groups else set())
-    for p in sorted(todo_meshes, key=lambda p: (p not in quick, p not in peer_set, p)):
+    for p in sorted(todo_meshes, key=lambda p: (p not in quick, p not in peer_set, p), reverse=args.reverse):
         name = p.relative_to(meshes).with_suffix("").as_posix()
         inp = out / "inputs" / (name.replace("/", "__") + ".obj")
         if not inp.exists():

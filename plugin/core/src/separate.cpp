@@ -1,5 +1,5 @@
 #include "acd/separate.h"
-#include "acd/polygon.h"
+#include "acd/polygon2.h"
 
 #include <algorithm>
 #include <cmath>

@@ -7,24 +7,11 @@
 #pragma once
 
 #include "acd/decompose.h"
+#include "acd/polygon2.h"
 
 #include <Eigen/Core>
 
 namespace acd {
-
-using Vec2 = Eigen::Vector2d;
-using Loop2 = std::vector<Vec2>;
-
-// A polygon with holes: the outer loop counter-clockwise, each hole clockwise (interior on the left).
-struct Polygon2
-{
-	Loop2              outer;
-	std::vector<Loop2> holes;
-};
-
-double signed_area(const Loop2& loop);   // > 0 for counter-clockwise
-double area(const Polygon2& p);           // outer minus holes
-bool   inside(const Loop2& loop, const Vec2& p);   // even-odd rule
 
 // Loops in any orientation and order -> polygons with holes. Nesting decides (point in polygon): a loop
 // inside an even number of others bounds material from outside (made counter-clockwise), an odd
@@ -109,10 +96,5 @@ using Edge = std::array<int, 2>;
 // Error(InvalidInput) if nothing forms a loop, the points are not planar (deviation above 1e-6 of the
 // size), a vertex joins more than two boundary edges, or an edge chain is open.
 PlanarLoops planar_loops(const std::vector<Vec3>& V, const std::vector<Tri>& F, const std::vector<Edge>& E);
-
-// Triangles of a polygon with holes (constrained Delaunay): vertices are the loops' points in order
-// (outer, then holes), triangles counter-clockwise; inside is decided by nesting, so the loops'
-// orientation does not matter. False if loops cross or two points coincide (numerically).
-bool triangulate(const Polygon2& p, std::vector<Vec2>& V, std::vector<Tri>& F);
 
 } // namespace acd
