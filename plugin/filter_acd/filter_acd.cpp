@@ -12,15 +12,13 @@
 #include <acd/hull_union.h>
 #include <acd/polygon.h>
 #include <acd/skeleton.h>
+#include <acd/tree_io.h>
 #include <acd/preprocess.h>
 #include <acd/wrap_solid.h>
 
 #include <vcg/complex/algorithms/update/color.h>
 
 #include <QFile>
-#include <QJsonArray>
-#include <QJsonDocument>
-#include <QJsonObject>
 
 #include <algorithm>
 #include <array>
@@ -539,7 +537,7 @@ FilterACD::decompose(const RichParameterList& par, MeshDocument& md, vcg::CallBa
 		QFile f(tree_file);
 		if (!f.open(QIODevice::WriteOnly | QIODevice::Truncate))
 			throw MLException("Cannot write the tree file " + tree_file);
-		f.write(QByteArray::fromStdString(d.to_json(true)));
+		f.write(QByteArray::fromStdString(acd::tree_to_json(d, true)));
 	}
 	const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 	const int    uncut = (int) std::count_if(d.nodes.begin(), d.nodes.end(), [](const acd::Node& n) { return n.uncut; });
@@ -668,64 +666,13 @@ std::map<std::string, QVariant> FilterACD::hullUnion(const RichParameterList& pa
 
 namespace {
 
-acd::TriMesh mesh_from_json(const QJsonObject& o)
-{
-	acd::TriMesh     m;
-	const QJsonArray v = o["v"].toArray(), f = o["f"].toArray();
-	for (int i = 0; i + 2 < v.size(); i += 3) m.V.emplace_back(v[i].toDouble(), v[i + 1].toDouble(), v[i + 2].toDouble());
-	for (int i = 0; i + 2 < f.size(); i += 3) {
-		acd::Tri t{f[i].toInt(-1), f[i + 1].toInt(-1), f[i + 2].toInt(-1)};
-		for (int k : t)
-			if (k < 0 || k >= (int) m.V.size()) throw MLException("The tree file has a face with a bad vertex index.");
-		m.F.push_back(t);
-	}
-	return m;
-}
-
-// The tree written by Decomposition::to_json(true), back into the core's structure (leaf meshes,
-// hulls kept aside by node id).
+// The tree written with tree_file, back into the core's structure (leaf meshes; hulls kept aside by
+// node id).
 acd::Decomposition read_tree(const QString& path, std::vector<acd::TriMesh>& hulls)
 {
 	QFile f(path);
 	if (path.isEmpty() || !f.open(QIODevice::ReadOnly)) throw MLException("Cannot read the tree file '" + path + "'.");
-	QJsonParseError    err;
-	const QJsonDocument doc = QJsonDocument::fromJson(f.readAll(), &err);
-	if (doc.isNull()) throw MLException("The tree file is not valid JSON: " + err.errorString());
-	const QJsonObject  root  = doc.object();
-	const QJsonArray   nodes = root["nodes"].toArray();
-	if (nodes.isEmpty()) throw MLException("The tree file has no nodes (was it written by the 3D decomposition?).");
-	acd::Decomposition D;
-	D.tau           = root["tau"].toDouble();
-	D.kept_cavities = root["kept_cavities"].toInt();
-	hulls.resize(nodes.size());
-	for (int i = 0; i < nodes.size(); ++i) {
-		const QJsonObject o = nodes[i].toObject();
-		acd::Node         n;
-		n.parent    = o["parent"].toInt(-1);
-		n.child[0]  = o["children"].toArray()[0].toInt(-1);
-		n.child[1]  = o["children"].toArray()[1].toInt(-1);
-		n.path      = o["path"].toString().toStdString();
-		n.concavity = o["concavity"].toDouble();
-		n.volume    = o["volume"].toDouble();
-		n.solids    = o["solids"].toBool();
-		n.cavities  = o["cavities"].toInt();
-		for (int c : n.child)
-			if (c >= nodes.size() || (c < 0 && n.child[0] != n.child[1])) throw MLException("The tree file's links are broken.");
-		if (o.contains("plane")) {
-			const QJsonObject pl = o["plane"].toObject();
-			const QJsonArray  nn = pl["normal"].toArray();
-			n.has_plane = true;
-			n.plane.n   = acd::Vec3(nn[0].toDouble(), nn[1].toDouble(), nn[2].toDouble());
-			n.plane.d   = pl["offset"].toDouble();
-		}
-		if (n.leaf()) {
-			if (!o.contains("mesh")) throw MLException("The tree file has no part geometry (write it with tree_file).");
-			n.mesh = mesh_from_json(o["mesh"].toObject());
-		}
-		if (o.contains("hull")) hulls[i] = mesh_from_json(o["hull"].toObject());
-		D.nodes.push_back(std::move(n));
-	}
-	return D;
+	return acd::tree_from_json(f.readAll().toStdString(), &hulls);
 }
 
 } // namespace
@@ -820,7 +767,7 @@ FilterACD::decomposePolygon(const RichParameterList& par, MeshDocument& md, vcg:
 	int         pieces = 0, holes = 0, notches = 0, hole_cuts = 0, kept = 0;
 	double      max_conc = 0, root_conc = 0;
 	bool        max_reached = false;
-	std::string json = "[";
+	std::vector<acd::Decomposition2> trees;
 	for (size_t k = 0; k < polys.size(); ++k) {
 		if (cb) {
 			// Each polygon's own progress, scaled into its share of the whole.
@@ -828,7 +775,7 @@ FilterACD::decomposePolygon(const RichParameterList& par, MeshDocument& md, vcg:
 			o.progress = [cb, lo, span](int pct, const char* msg) { return cb(lo + pct * span / 100, msg); };
 		}
 		const acd::Decomposition2 d = acd::decompose(polys[k], o);
-		json += (k ? "," : "") + d.to_json();
+		trees.push_back(d);
 		holes += (int) polys[k].holes.size();
 		notches += d.nodes[0].notches;
 		hole_cuts += d.hole_cuts;
@@ -863,12 +810,11 @@ FilterACD::decomposePolygon(const RichParameterList& par, MeshDocument& md, vcg:
 			++pieces;
 		}
 	}
-	json += "]";
 	const QString tree_file = par.getString("tree_file");
 	if (!tree_file.isEmpty()) {
 		QFile f(tree_file);
 		if (!f.open(QIODevice::WriteOnly | QIODevice::Truncate)) throw MLException("Cannot write the tree file " + tree_file);
-		f.write(QByteArray::fromStdString("{\"polygons\":" + json + "}"));
+		f.write(QByteArray::fromStdString(acd::polygon_trees_to_json(trees)));
 	}
 	const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 	log("Polygon convex decomposition: %d polygons, %d holes, %d notches; %d pieces, tau %g (model units), max "

@@ -254,45 +254,6 @@ bool Decomposition::tau_convex() const
 	return kept_cavities == 0 && !max_parts_reached && !time_limit_reached;
 }
 
-std::string Decomposition::to_json(bool geometry) const
-{
-	std::ostringstream o;
-	o.precision(17);
-	o << "{\"tau\":" << tau << ",\"max_parts_reached\":" << (max_parts_reached ? "true" : "false")
-	  << ",\"hole_cuts\":" << hole_cuts << ",\"kept_cavities\":" << kept_cavities
-	  << ",\"nodes\":[";
-	for (size_t i = 0; i < nodes.size(); ++i) {
-		const Node& n = nodes[i];
-		o << (i ? "," : "") << "{\"id\":" << i << ",\"path\":\"" << n.path << "\",\"parent\":" << n.parent
-		  << ",\"children\":[" << n.child[0] << "," << n.child[1] << "]"
-		  << ",\"concavity\":" << n.concavity << ",\"hull_distance\":" << n.hull_distance
-		  << ",\"hull_distance_bound\":" << n.hull_distance_bound << ",\"volume\":" << n.volume << ",\"notches\":" << n.notches
-		  << ",\"leaf\":" << (n.leaf() ? "true" : "false") << ",\"uncut\":" << (n.uncut ? "true" : "false")
-		  << ",\"solids\":" << (n.solids ? "true" : "false") << ",\"cavities\":" << n.cavities
-		  << ",\"hole_cut\":" << (n.hole_cut ? "true" : "false");
-		if (n.concavity > 0)
-			o << ",\"notch\":[" << n.notch.x() << "," << n.notch.y() << "," << n.notch.z() << "]";
-		if (n.has_plane)
-			o << ",\"plane\":{\"normal\":[" << n.plane.n.x() << "," << n.plane.n.y() << "," << n.plane.n.z()
-			  << "],\"offset\":" << n.plane.d << "}";
-		auto mesh = [&](const char* key, const TriMesh& m) {
-			o << ",\"" << key << "\":{\"v\":[";
-			for (size_t k = 0; k < m.V.size(); ++k)
-				o << (k ? "," : "") << m.V[k].x() << "," << m.V[k].y() << "," << m.V[k].z();
-			o << "],\"f\":[";
-			for (size_t k = 0; k < m.F.size(); ++k) o << (k ? "," : "") << m.F[k][0] << "," << m.F[k][1] << "," << m.F[k][2];
-			o << "]}";
-		};
-		if (geometry && !n.mesh.F.empty()) {
-			mesh("hull", ConvexHull(n.mesh.V).mesh());
-			if (n.leaf()) mesh("mesh", n.mesh);
-		}
-		o << "}";
-	}
-	o << "]}";
-	return o.str();
-}
-
 namespace {
 
 std::vector<int> level_where(const Decomposition& D, const std::function<bool(int)>& whole)

@@ -493,29 +493,6 @@ double Decomposition2::max_leaf_concavity() const
 	return c;
 }
 
-std::string Decomposition2::to_json() const
-{
-	std::ostringstream o;
-	o.precision(17);
-	o << "{\"dimension\":2,\"tau\":" << tau << ",\"max_parts_reached\":" << (max_parts_reached ? "true" : "false")
-	  << ",\"hole_cuts\":" << hole_cuts << ",\"kept_holes\":" << kept_holes << ",\"nodes\":[";
-	for (size_t i = 0; i < nodes.size(); ++i) {
-		const Node2& n = nodes[i];
-		o << (i ? "," : "") << "{\"id\":" << i << ",\"path\":\"" << n.path << "\",\"parent\":" << n.parent
-		  << ",\"children\":[" << n.child[0] << "," << n.child[1] << "],\"concavity\":" << n.concavity
-		  << ",\"area\":" << n.area << ",\"notches\":" << n.notches << ",\"holes\":" << n.holes
-		  << ",\"leaf\":" << (n.leaf() ? "true" : "false") << ",\"uncut\":" << (n.uncut ? "true" : "false")
-		  << ",\"hole_cut\":" << (n.hole_cut ? "true" : "false");
-		if (n.has_cut)
-			o << ",\"cut\":{\"from\":[" << n.cut_from.x() << "," << n.cut_from.y() << "],\"to\":[" << n.cut_to.x()
-			  << "," << n.cut_to.y() << "],\"normal\":[" << n.line.n.x() << "," << n.line.n.y()
-			  << "],\"offset\":" << n.line.d << "}";
-		o << "}";
-	}
-	o << "]}";
-	return o.str();
-}
-
 namespace {
 
 // Principal axes of a hole's boundary (length-weighted, so the sampling does not matter) and its

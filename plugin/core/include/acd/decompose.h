@@ -86,9 +86,6 @@ struct Decomposition
 	// The certificate: every leaf within tau by both measures (its hull to 1% of tau), none left
 	// uncut, no cavity kept, no limit reached.
 	bool             tau_convex() const;
-	// The tree as JSON; with `geometry`, also each node's convex hull and each leaf's mesh (what
-	// level_of_detail and rebuild_solid need to serve coarser levels later without recomputing).
-	std::string to_json(bool geometry = false) const;
 };
 
 // Level of detail from a finished tree, without recomputing: the nodes where the tree is cut when a

@@ -68,7 +68,6 @@ struct Decomposition2
 	int                kept_holes = 0;
 	std::vector<int>   leaves() const;   // in path order
 	double             max_leaf_concavity() const;
-	std::string        to_json() const;
 };
 
 // Options are the 3D ones: tau, cut_plane_selection (the cut line), hole_handling (PrincipalPlane = the
