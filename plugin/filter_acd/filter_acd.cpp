@@ -25,7 +25,9 @@
 #include <chrono>
 #include <fstream>
 #include <optional>
+#if defined(__unix__) || defined(__APPLE__)
 #include <unistd.h>
+#endif
 
 namespace {
 
@@ -49,17 +51,24 @@ QString self_intersection_message(long n)
 constexpr double kBytesPerFace = 1500;
 constexpr double kAutoMaxAlpha = 16;   // % of size: the coarsest wrap preprocessing = auto tries
 
-// Memory the system can still give us (Linux: MemAvailable; elsewhere free pages), 0 if unknown.
+// Memory the system can still give us (Linux: MemAvailable; other POSIX systems: free pages), 0 if
+// unknown (Windows): the check is then skipped.
 double available_memory()
 {
+#if defined(__linux__)
 	std::ifstream meminfo("/proc/meminfo");
 	std::string   key;
 	double        kb = 0;
 	std::string   unit;
 	while (meminfo >> key >> kb >> unit)
 		if (key == "MemAvailable:") return kb * 1024;
+#endif
+#if defined(_SC_AVPHYS_PAGES) && defined(_SC_PAGE_SIZE)
 	const long pages = sysconf(_SC_AVPHYS_PAGES), page = sysconf(_SC_PAGE_SIZE);
 	return pages > 0 && page > 0 ? double(pages) * double(page) : 0;
+#else
+	return 0;
+#endif
 }
 
 const char* kCitation =
@@ -99,6 +108,24 @@ vcg::Color4b part_color(int i)
 	c.SetHSVColor(h, 0.65f, 0.95f);
 	return c;
 }
+
+// A new layer holding `m` (with `edges`, e.g. a polygon's outline), placed like `like` when given, in
+// part colour `colour` (< 0: left uncoloured).
+MeshModel* add_layer(MeshDocument& md, const QString& name, const acd::TriMesh& m, const MeshModel* like, int colour,
+                     const std::vector<std::array<int, 2>>& edges = {})
+{
+	MeshModel* layer = md.addNewMesh("", name, false);
+	acdml::from_trimesh(m, layer->cm, edges);
+	if (like) layer->cm.Tr = like->cm.Tr;
+	if (colour >= 0) {
+		layer->updateDataMask(MeshModel::MM_VERTCOLOR);
+		vcg::tri::UpdateColor<CMeshO>::PerVertexConstant(layer->cm, part_color(colour));
+	}
+	layer->updateBoxAndNormals();
+	return layer;
+}
+
+QString layer_name(const char* prefix, const std::string& path) { return QString(prefix) + QString::fromStdString(path); }
 
 } // namespace
 
@@ -513,22 +540,12 @@ FilterACD::decompose(const RichParameterList& par, MeshDocument& md, vcg::CallBa
 	int        idx       = 0;
 	for (int li : d.leaves()) {
 		const acd::Node& n = d.nodes[li];
-		MeshModel* part = md.addNewMesh("", QString("acd_%1").arg(QString::fromStdString(n.path)), false);
-		acdml::from_trimesh(n.mesh, part->cm);
-		part->cm.Tr = input.cm.Tr;
-		part->updateDataMask(MeshModel::MM_VERTCOLOR);
-		vcg::tri::UpdateColor<CMeshO>::PerVertexConstant(part->cm, part_color(idx));
-		part->updateBoxAndNormals();
+		add_layer(md, layer_name("acd_", n.path), n.mesh, &input, idx);
 		if (hulls) {
 			acd::ConvexHull h(n.mesh.V);
 			acd::TriMesh    hm = h.mesh();
 			if (max_hullv > 3 && (int) hm.V.size() > max_hullv) hm = acd::simplify_hull(hm, max_hullv);
-			MeshModel* hull = md.addNewMesh("", QString("acd_hull_%1").arg(QString::fromStdString(n.path)), false);
-			acdml::from_trimesh(hm, hull->cm);
-			hull->cm.Tr = input.cm.Tr;
-			hull->updateDataMask(MeshModel::MM_VERTCOLOR);
-			vcg::tri::UpdateColor<CMeshO>::PerVertexConstant(hull->cm, part_color(idx));
-			hull->updateBoxAndNormals();
+			add_layer(md, layer_name("acd_hull_", n.path), hm, &input, idx);
 		}
 		++idx;
 	}
@@ -630,21 +647,13 @@ std::map<std::string, QVariant> FilterACD::hullUnion(const RichParameterList& pa
 		const acd::Node& n = run.d.nodes[li];
 		acd::TriMesh     h = acd::ConvexHull(n.mesh.V).mesh();
 		if (maxv > 3 && (int) h.V.size() > maxv) h = acd::simplify_hull(h, maxv);
-		MeshModel* layer = md.addNewMesh("", QString("acd_hull_%1").arg(QString::fromStdString(n.path)), false);
-		acdml::from_trimesh(h, layer->cm);
-		layer->cm.Tr = input.cm.Tr;
-		layer->updateDataMask(MeshModel::MM_VERTCOLOR);
-		vcg::tri::UpdateColor<CMeshO>::PerVertexConstant(layer->cm, part_color(idx++));
-		layer->updateBoxAndNormals();
+		add_layer(md, layer_name("acd_hull_", n.path), h, &input, idx++);
 		hulls.push_back(std::move(h));
 	}
 	const bool boolean = par.getEnum("merge") == 1;
 	if (cb) cb(99, boolean ? "Boolean union of the hulls..." : "Merging the hulls...");
 	const acd::TriMesh merged = acd::merge_hulls(hulls, boolean);
-	MeshModel*         layer  = md.addNewMesh("", "acd_hull_union", false);
-	acdml::from_trimesh(merged, layer->cm);
-	layer->cm.Tr = input.cm.Tr;
-	layer->updateBoxAndNormals();
+	add_layer(md, "acd_hull_union", merged, &input, -1);
 	const int samples = par.getInt("iou_samples");
 	double    se      = 0;
 	const double iou  = samples > 0 ? acd::volume_iou(run.solid.mesh, hulls, samples, 1, &se) : 0;
@@ -708,18 +717,8 @@ std::map<std::string, QVariant> FilterACD::levelOfDetail(const RichParameterList
 		catch (const acd::Error&) {
 			++open_parts;
 		}
-		MeshModel* part = md.addNewMesh("", QString("acd_%1").arg(QString::fromStdString(n.path)), false);
-		acdml::from_trimesh(m, part->cm);
-		part->updateDataMask(MeshModel::MM_VERTCOLOR);
-		vcg::tri::UpdateColor<CMeshO>::PerVertexConstant(part->cm, part_color(idx));
-		part->updateBoxAndNormals();
-		if (par.getBool("output_hulls") && !hulls[id].F.empty()) {
-			MeshModel* h = md.addNewMesh("", QString("acd_hull_%1").arg(QString::fromStdString(n.path)), false);
-			acdml::from_trimesh(hulls[id], h->cm);
-			h->updateDataMask(MeshModel::MM_VERTCOLOR);
-			vcg::tri::UpdateColor<CMeshO>::PerVertexConstant(h->cm, part_color(idx));
-			h->updateBoxAndNormals();
-		}
+		add_layer(md, layer_name("acd_", n.path), m, nullptr, idx);
+		if (par.getBool("output_hulls") && !hulls[id].F.empty()) add_layer(md, layer_name("acd_hull_", n.path), hulls[id], nullptr, idx);
 		++idx;
 	}
 	const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -801,12 +800,7 @@ FilterACD::decomposePolygon(const RichParameterList& par, MeshDocument& md, vcg:
 			}
 			const QString name = polys.size() > 1 ? QString("acd_p%1_%2").arg(k).arg(QString::fromStdString(d.nodes[li].path))
 			                                       : QString("acd_%1").arg(QString::fromStdString(d.nodes[li].path));
-			MeshModel* layer = md.addNewMesh("", name, false);
-			acdml::from_trimesh(t, layer->cm, outline);
-			layer->cm.Tr = input.cm.Tr;
-			layer->updateDataMask(MeshModel::MM_VERTCOLOR);
-			vcg::tri::UpdateColor<CMeshO>::PerVertexConstant(layer->cm, part_color(pieces));
-			layer->updateBoxAndNormals();
+			add_layer(md, name, t, &input, pieces, outline);
 			++pieces;
 		}
 	}
