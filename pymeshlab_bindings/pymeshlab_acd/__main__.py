@@ -39,7 +39,7 @@ def _write_objects(path, meshes, prefix):
         base = 1
         for k, (V, F) in enumerate(meshes):
             f.write(f"o {prefix}_{k}\n")
-            f.writelines(f"v {x:.9g} {y:.9g} {z:.9g}\n" for x, y, z in V)
+            f.writelines(f"v {x:.17g} {y:.17g} {z:.17g}\n" for x, y, z in V)
             f.writelines(f"f {a + base} {b + base} {c + base}\n" for a, b, c in F)
             base += len(V)
 
