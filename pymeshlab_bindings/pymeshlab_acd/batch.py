@@ -91,11 +91,15 @@ def decompose_file(src, out_dir, opts):
         try:
             a, pre = attempt("none", opts["wrap_alpha"]), "none"
         except pymeshlab.PyMeshLabException as e:
-            # Open, non-manifold or otherwise unusable as given: the filter's `auto` welds it, or wraps
-            # it into a closed solid, doubling alpha (up to 16% of size) while the wrap is a hollow skin.
-            a = attempt("auto", opts["wrap_alpha"])
-            pre = (f"alpha_wrap {a['res']['wrap_alpha_used']:.3g}%" if a["res"]["alpha_wrapped"] else
-                   f"welded {a['res']['welded_vertices']} vertices")
+            if "intersects itself" in str(e):
+                # Closed, but crossing itself where a cut needed it not to: only a wrap makes it one solid.
+                a, pre = attempt("alpha_wrap", opts["wrap_alpha"]), f"alpha_wrap {opts['wrap_alpha']:g}%"
+            else:
+                # Open, non-manifold or otherwise unusable as given: the filter's `auto` welds it, or wraps
+                # it into a closed solid, doubling alpha (up to 16% of size) while the wrap is a hollow skin.
+                a = attempt("auto", opts["wrap_alpha"])
+                pre = (f"alpha_wrap {a['res']['wrap_alpha_used']:.3g}%" if a["res"]["alpha_wrapped"] else
+                       f"welded {a['res']['welded_vertices']} vertices")
             note = f"wrapped: as given, {_reason(e)}"
     ms, source, res, parts, hulls = a["ms"], a["source"], a["res"], a["parts"], a["hulls"]
     if opts["save_tree"]:   # the chosen attempt's tree, for coarser levels later
