@@ -90,6 +90,11 @@ def decompose_file(src, out_dir, opts):
     else:
         try:
             a, pre = attempt("none", opts["wrap_alpha"]), "none"
+            r = a["res"]
+            if r.get("self_intersections") and not r.get("tau_convex", True):
+                raise pymeshlab.PyMeshLabException(
+                    f"the mesh intersects itself ({r['self_intersections']} face pairs) and its parts as given "
+                    "are not all within tau")
         except pymeshlab.PyMeshLabException as e:
             if "intersects itself" in str(e):
                 # Closed, but crossing itself where a cut needed it not to: only a wrap makes it one solid.
