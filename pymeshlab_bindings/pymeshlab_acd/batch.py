@@ -75,7 +75,13 @@ def decompose_file(src, out_dir, opts):
         ms.load_new_mesh(str(src))
         source = ms.current_mesh_id()
         tree = pathlib.Path(out_dir) / f".tree-{preprocessing}-{alpha:g}.json"
-        res, ids = decompose(ms, preprocessing=preprocessing, wrap_alpha=alpha, **params,
+        run = dict(params)
+        if preprocessing == "none" and opts["preprocessing"] == "auto" and _crosses_itself(ms):
+            # Cuts through a self-crossing surface can peel slivers for a long time: as given gets a
+            # bounded try (its parts then fall short of tau and the mesh is wrapped instead).
+            run["time_limit"] = min(run["time_limit"] or SELF_CROSSING_TRY, SELF_CROSSING_TRY)
+            ms.set_current_mesh(source)
+        res, ids = decompose(ms, preprocessing=preprocessing, wrap_alpha=alpha, **run,
                              **({"tree_file": str(tree)} if opts["save_tree"] else {"with_tree": False}))
         hulls = [i for i in ids if ms.mesh(i).label().startswith("acd_hull_")]
         parts = [i for i in ids if i not in hulls]
@@ -125,6 +131,17 @@ def decompose_file(src, out_dir, opts):
                time_limit_reached=res.get("time_limit_reached", False))
     (pathlib.Path(out_dir) / "summary.json").write_text(json.dumps(rec, indent=1, default=float))
     return rec
+
+
+SELF_CROSSING_TRY = 120.0   # seconds for a self-crossing mesh as given, under preprocessing auto
+
+
+def _crosses_itself(ms):
+    """MeshLab's own check: does the current mesh have faces that cross each other?"""
+    ms.compute_selection_by_self_intersections_per_face()
+    crossing = ms.current_mesh().selected_face_number() > 0
+    ms.set_selection_none()
+    return crossing
 
 
 def _reason(e):
