@@ -90,7 +90,7 @@ def test_cli_checks_arguments_before_any_work(tmp_path):
 
 
 def test_every_subcommand_starts_from_the_same_defaults():
-    """One table (pymeshlab_acd.options.DEFAULTS) behind decompose and batch, shown in --help."""
+    """One table (pymeshlab_acd.options.DEFAULTS) behind decompose, batch and structure, shown in --help."""
     from pymeshlab_acd.__main__ import main
     from pymeshlab_acd.options import DEFAULTS
     import argparse
@@ -103,7 +103,7 @@ def test_every_subcommand_starts_from_the_same_defaults():
         raise SystemExit(0)
     argparse.ArgumentParser.parse_args = capture
     try:
-        for argv in (["decompose", "x.obj"], ["batch", "in", "out"]):
+        for argv in (["decompose", "x.obj"], ["batch", "in", "out"], ["structure", "x.obj", "--out", "o"]):
             with pytest.raises(SystemExit):
                 main(argv)
     finally:
@@ -111,6 +111,7 @@ def test_every_subcommand_starts_from_the_same_defaults():
     for cmd in ("decompose", "batch"):
         for k, v in DEFAULTS.items():
             assert seen[cmd][k] == v, (cmd, k)
+    assert seen["structure"]["tau"] == DEFAULTS["tau"] and seen["structure"]["preprocessing"] == "auto"
     assert seen["decompose"]["preprocessing"] == "auto"
     r = _cli("decompose", "--help")
     assert "(default: 2.0)" in r.stdout and "(default: auto)" in r.stdout

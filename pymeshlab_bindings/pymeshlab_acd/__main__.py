@@ -129,7 +129,7 @@ def cmd_structure(a):
     out = pathlib.Path(a.out)
     out.mkdir(parents=True, exist_ok=True)
     with ProgressBar(ms, a.progress):
-        res, _ = decompose(ms, tau=a.tau, tree_file=str(out / "tree.json"))
+        res, _ = decompose(ms, tau=a.tau, preprocessing=a.preprocessing, tree_file=str(out / "tree.json"))
     print(f"mesh             {a.mesh}  ({ms.mesh(src).face_number()} faces)")
     print(f"decomposition    tau {a.tau}%: {res['parts']} parts in {res['time']:.2f} s, tree saved to {out / 'tree.json'}")
     t0 = time.perf_counter()
@@ -138,7 +138,7 @@ def cmd_structure(a):
           f"{time.perf_counter() - t0:.2f} s (nothing recomputed)")
 
     ms.set_current_mesh(src)
-    sk = ms.generate_skeleton_from_convex_decomposition(tau=a.tau)
+    sk = ms.generate_skeleton_from_convex_decomposition(tau=a.tau, preprocessing=a.preprocessing)
     ms.set_current_mesh([i for i in mesh_ids(ms) if ms.mesh(i).label() == "acd_skeleton"][-1])
     V, E = ms.current_mesh().vertex_matrix(), ms.current_mesh().edge_matrix()
     ms.save_current_mesh(str(out / "skeleton.obj"))
@@ -156,7 +156,8 @@ def cmd_structure(a):
           f"{out / 'skeleton.obj'}")
 
     ms.set_current_mesh(src)
-    hu = ms.generate_convex_hull_union(tau=a.tau, max_hull_vertices=a.union_hull_vertices)
+    hu = ms.generate_convex_hull_union(tau=a.tau, max_hull_vertices=a.union_hull_vertices,
+                                       preprocessing=a.preprocessing)
     union = [i for i in mesh_ids(ms) if ms.mesh(i).label() == "acd_hull_union"][-1]
     ms.set_current_mesh(union)
     ms.save_current_mesh(str(out / "hull_union.obj"))
@@ -281,11 +282,11 @@ def main(argv=None):
                    help="also write collision hulls (OBJ, STL), a URDF, an MJCF and a MeshLab project to OUT/export")
     st = sub.add_parser("structure", formatter_class=fmt,
                         help="from the tree: a coarser level, the skeleton, the hull union")
-    st.add_argument("mesh", nargs="?", help="closed mesh file")
+    st.add_argument("mesh", nargs="?", help="mesh file (closed, or see --preprocessing)")
     st.add_argument("--demo", action="store_true", help="use pymeshlab's bundled bunny as MESH")
     st.add_argument("--out", required=True, help="folder for tree.json, skeleton.obj, hull_union.obj")
     st.add_argument("--no-progress", dest="progress", action="store_false", help="no progress bar")
-    add_arguments(st, "tau")
+    add_arguments(st, "tau", "preprocessing")
     st.add_argument("--coarser", type=float, default=3 * DEFAULTS["tau"],
                     help="coarser tau read back from the tree (%% of the size)")
     st.add_argument("--union-hull-vertices", type=int, default=64, help="per hull of the hull union")
