@@ -163,3 +163,15 @@ def test_an_open_mesh_is_refused_with_this_tools_remedy_first():
         pymeshlab_acd.convex_decomposition(V, F[:-1])
     msg = str(e.value)
     assert msg.index("preprocessing to 'auto'") < msg.index("Close Holes")
+
+
+def test_convex_decomposition_returns_the_filters_hull_layers():
+    V, F = extrude(U_SHAPE, 0, 1)
+    hulls = pymeshlab_acd.convex_decomposition(V, F, tau=0.1, tau_unit="model_units")
+    ms = pymeshlab.MeshSet()
+    add_mesh(ms, V, F)
+    res, ids = pymeshlab_acd.decompose(ms, with_tree=False, tau=0.1, tau_unit="model_units", output_hulls=True)
+    layers = [ms.mesh(i) for i in ids if ms.mesh(i).label().startswith("acd_hull_")]
+    assert len(layers) == len(hulls) == res["parts"]
+    for (Vh, Fh), m in zip(hulls, layers):
+        assert np.array_equal(Vh, m.vertex_matrix()) and np.array_equal(Fh, m.face_matrix())
