@@ -15,6 +15,8 @@ checkout starts from the rows published in docs/robots/) and the two groups can 
 the summary (robots.md) is written from both.
 """
 import argparse
+import contextlib
+import fcntl
 import hashlib
 import json
 import os
@@ -136,7 +138,7 @@ def main():
     ap.add_argument("--timeout", type=int, default=900, help="seconds per method run")
     ap.add_argument("--out", default=str(REPO / "out" / "robots"))
     ap.add_argument("--reverse", action="store_true",
-                    help="meshes in reverse order: a second run (with its own --out) meets the first halfway")
+                    help="meshes in reverse order: a second run on the same --out meets the first halfway")
     args = ap.parse_args()
     meshes = fetch_corpus()
     files = corpus(meshes)
@@ -176,19 +178,38 @@ def main():
         if "peers" in groups and p in peer_set:
             todo += [s for s in PEERS]
         for method, label, params in todo:
-            if (name, method, label) in have:
-                continue
+            group = "ours" if method == "ours" else "peers"
+            key = (name, method, label)
+            with locked(stores[group]) as rows:   # another run on the same --out may have done it
+                if key in have or any((r["mesh"], r["method"], r["setting"]) == key for r in rows):
+                    continue
             row = dict(mesh=name, faces=faces, method=method, setting=label)
             row.update(run_ours_row(p, inp, args) if method == "ours" else run_peer_row(method, params, inp, args,
                                                                                         out, name, label))
-            group = "ours" if method == "ours" else "peers"
-            done[group].append(row)
-            stores[group].write_text(json.dumps(done[group], indent=1))
+            with locked(stores[group]) as rows:
+                if not any((r["mesh"], r["method"], r["setting"]) == key for r in rows):
+                    rows.append(row)
+                done[group] = list(rows)
             print(line(row), flush=True)
     rows = done["ours"] + done["peers"]
     summary = summarize(rows, meshes)
     print("\n".join(summary))
     (out / "robots.md").write_text("\n".join(summary) + "\n\n" + "\n".join(table(rows)) + "\n")
+
+
+@contextlib.contextmanager
+def locked(store):
+    """The rows of a store, read and written back under an exclusive lock, so that two runs (e.g. one with
+    --reverse) can share one --out and meet halfway without running a mesh twice."""
+    with open(store.with_suffix(".lock"), "w") as lock:
+        fcntl.flock(lock, fcntl.LOCK_EX)
+        rows = json.loads(store.read_text()) if store.exists() else []
+        n = len(rows)
+        yield rows
+        if len(rows) != n:
+            tmp = store.with_suffix(".tmp")
+            tmp.write_text(json.dumps(rows, indent=1))
+            tmp.replace(store)
 
 
 def run_ours_row(src, inp, args):

@@ -225,7 +225,28 @@ int ConvexHull::facet_facing(int t, const Vec3& n) const
 
 TriMesh ConvexHull::mesh() const
 {
-	return TriMesh{points, triangles};
+	// In a canonical order (vertices by coordinates, triangles by their lowest corner first): CGAL's
+	// hull keys its border edges by handle addresses, so its own order differs from run to run, and
+	// the same input must give the same layer, file and simplified hull.
+	std::vector<int> order(points.size());
+	std::iota(order.begin(), order.end(), 0);
+	std::sort(order.begin(), order.end(), [&](int a, int b) {
+		return std::lexicographical_compare(points[a].data(), points[a].data() + 3, points[b].data(),
+		                                    points[b].data() + 3);
+	});
+	TriMesh          out;
+	std::vector<int> rank(points.size());
+	for (int i = 0; i < (int) order.size(); ++i) {
+		rank[order[i]] = i;
+		out.V.push_back(points[order[i]]);
+	}
+	for (const Tri& t : triangles) {
+		Tri r = {rank[t[0]], rank[t[1]], rank[t[2]]};
+		std::rotate(r.begin(), std::min_element(r.begin(), r.end()), r.end());
+		out.F.push_back(r);
+	}
+	std::sort(out.F.begin(), out.F.end());
+	return out;
 }
 
 TriMesh simplify_hull(const TriMesh& hull, int max_vertices)

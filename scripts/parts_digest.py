@@ -1,0 +1,113 @@
+#!/usr/bin/env python3
+"""Fingerprint of what the filters return on a fixed set of cases, for changes that must not change
+results (refactors): per case the part count, the parts' total volume and a hash of every output
+layer's exact vertex and face arrays. Run it once per plugin build and compare:
+
+    ACD_PLUGIN=old/libfilter_acd.so python3 scripts/parts_digest.py > old.json
+    ACD_PLUGIN=new/libfilter_acd.so python3 scripts/parts_digest.py --compare old.json
+
+Cases: CAD solids (manifold3d) with every cut_plane_selection, the bundled bunny, a 2D polygon with
+holes, the skeleton and the hull union."""
+import argparse
+import hashlib
+import json
+import pathlib
+import sys
+
+import numpy as np
+import pymeshlab
+
+REPO = pathlib.Path(__file__).resolve().parents[1]
+sys.path.insert(0, str(REPO / "tests"))
+import cad_solids  # noqa: E402
+import pymeshlab_acd  # noqa: E402
+from pymeshlab_acd import polygon_io  # noqa: E402
+
+DATA = REPO.parent / "shared" / "data"
+
+
+def layers_digest(ms, first):
+    """Part count, volume sum and exact hash of the layers added after id `first`."""
+    h, vol, n = hashlib.sha256(), 0.0, 0
+    for mid in pymeshlab_acd.mesh_ids(ms):
+        if mid <= first:
+            continue
+        m = ms.mesh(mid)
+        v, f = m.vertex_matrix(), m.face_matrix()
+        h.update(np.ascontiguousarray(v, np.float64).tobytes())
+        h.update(np.ascontiguousarray(f, np.int64).tobytes())
+        if len(f):
+            a, b, c = v[f[:, 0]], v[f[:, 1]], v[f[:, 2]]
+            vol += float(np.einsum("ij,ij->i", a, np.cross(b, c)).sum() / 6)
+        n += 1
+    return dict(layers=n, volume=round(vol, 9), sha=h.hexdigest()[:16])
+
+
+def solid(ms, name):
+    v, f = cad_solids.make(name)
+    ms.add_mesh(pymeshlab.Mesh(v, f), name)
+
+
+def polygon(ms, path):
+    v, e = polygon_io.loops_to_mesh(polygon_io.read_loops(str(path)))
+    ms.add_mesh(pymeshlab.Mesh(vertex_matrix=v, edge_matrix=e), "polygon")
+
+
+def cases():
+    for name in ("keyway", "flange", "pocket", "stepped_shaft", "t_slot_rail", "spur_gear"):
+        for sel in ("best", "bisector", "min_section"):
+            yield f"{name} {sel}", lambda ms, n=name: solid(ms, n), "decompose", dict(cut_plane_selection=sel)
+    bunny = pathlib.Path(pymeshlab.__file__).parent / "tests" / "sample_meshes" / "bunny.obj"
+    yield "bunny best", lambda ms: ms.load_new_mesh(str(bunny)), "decompose", {}
+    yield "keyway skeleton", lambda ms: solid(ms, "keyway"), "skeleton", {}
+    yield "flange hull union", lambda ms: solid(ms, "flange"), "union", {}
+    for poly in ("fisheye", "dsb", "batlogo"):
+        yield f"{poly} 2D", lambda ms, p=poly: polygon(ms, DATA / "polygons" / f"{p}.poly"), "polygon", {}
+
+
+def run_case(setup, kind, params):
+    ms = pymeshlab.MeshSet()
+    pymeshlab_acd.load()
+    setup(ms)
+    first = max(pymeshlab_acd.mesh_ids(ms))
+    if kind == "decompose":
+        res = ms.generate_approximate_convex_decomposition(**params)
+    elif kind == "skeleton":
+        res = ms.generate_skeleton_from_convex_decomposition(**params)
+    elif kind == "union":
+        res = ms.generate_convex_hull_union(**params)
+    else:
+        res = ms.generate_polygon_approximate_convex_decomposition(**params)
+    out = layers_digest(ms, first)
+    out["result"] = {k: (round(v, 9) if isinstance(v, float) else v) for k, v in sorted(res.items())
+                     if isinstance(v, (int, float, bool, str)) and "time" not in k}
+    return out
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--compare", help="a digest from another build: print both side by side")
+    args = ap.parse_args()
+    rows = {}
+    for label, setup, kind, params in cases():
+        rows[label] = run_case(setup, kind, params)
+        print(f"{label}: {rows[label]['layers']} layers, volume {rows[label]['volume']}, {rows[label]['sha']}",
+              file=sys.stderr, flush=True)
+    if not args.compare:
+        print(json.dumps(rows, indent=1))
+        return
+    old = json.loads(pathlib.Path(args.compare).read_text())
+    print("| case | layers (other / this) | volume (other / this) | identical |\n|---|---|---|---|")
+    same = 0
+    for label, r in rows.items():
+        o = old.get(label, {})
+        eq = o == r
+        same += eq
+        print(f"| {label} | {o.get('layers')} / {r['layers']} | {o.get('volume')} / {r['volume']} | "
+              f"{'yes' if eq else 'NO'} |")
+    print(f"\n{same} of {len(rows)} cases identical (layers' exact vertices and faces, and the filter's result)")
+    sys.exit(0 if same == len(rows) else 1)
+
+
+if __name__ == "__main__":
+    main()
