@@ -48,6 +48,14 @@ def solid(ms, name):
     ms.add_mesh(pymeshlab.Mesh(v, f), name)
 
 
+# Robot meshes (example-robot-data, when scripts/bench.sh --robots has cached it): a film-dropping gripper
+# link, a closed link as given, an open one (welded or wrapped).
+ROBOT_MESHES = ["z1_description/meshes/collision/z1_GripperMover.STL",
+                "ur_description/meshes/ur10/collision/forearm.stl",
+                "laikago_description/meshes/hip.obj",
+                "double_pendulum_description/meshes/link2.stl"]
+
+
 def polygon(ms, path):
     v, e = polygon_io.loops_to_mesh(polygon_io.read_loops(str(path)))
     ms.add_mesh(pymeshlab.Mesh(vertex_matrix=v, edge_matrix=e), "polygon")
@@ -61,6 +69,17 @@ def cases():
     yield "bunny best", lambda ms: ms.load_new_mesh(str(bunny)), "decompose", {}
     yield "keyway skeleton", lambda ms: solid(ms, "keyway"), "skeleton", {}
     yield "flange hull union", lambda ms: solid(ms, "flange"), "union", {}
+    robots = None
+    try:
+        sys.path.insert(0, str(REPO / "scripts"))
+        import bench_robots
+        robots = bench_robots.cache() / "robots" / "meshes"
+    except Exception:
+        pass
+    for rel in ROBOT_MESHES:
+        if robots is not None and (robots / rel).exists():
+            yield rel.split("/")[-1], lambda ms, f=robots / rel: ms.load_new_mesh(str(f)), "decompose", \
+                dict(preprocessing="auto")
     for poly in ("fisheye", "dsb", "batlogo"):
         yield f"{poly} 2D", lambda ms, p=poly: polygon(ms, DATA / "polygons" / f"{p}.poly"), "polygon", {}
 
