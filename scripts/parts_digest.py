@@ -56,6 +56,14 @@ ROBOT_MESHES = ["z1_description/meshes/collision/z1_GripperMover.STL",
                 "double_pendulum_description/meshes/link2.stl"]
 
 
+def hollow_box(ms):
+    """An L-shaped block with a closed cavity inside."""
+    import manifold3d as mf
+    block = mf.Manifold.cube([6, 4, 3]) + mf.Manifold.cube([2, 4, 6])
+    v, f = cad_solids._arrays(block - mf.Manifold.cube([2, 2, 1]).translate([3, 1, 1]))
+    ms.add_mesh(pymeshlab.Mesh(v, f), "hollow_box")
+
+
 def polygon(ms, path):
     v, e = polygon_io.loops_to_mesh(polygon_io.read_loops(str(path)))
     ms.add_mesh(pymeshlab.Mesh(vertex_matrix=v, edge_matrix=e), "polygon")
@@ -65,8 +73,12 @@ def cases():
     for name in ("keyway", "flange", "pocket", "stepped_shaft", "t_slot_rail", "spur_gear"):
         for sel in ("best", "bisector", "min_section"):
             yield f"{name} {sel}", lambda ms, n=name: solid(ms, n), "decompose", dict(cut_plane_selection=sel)
+    for hh in ("principal_plane", "best_plane", "keep_cavities"):
+        yield f"hollow box {hh}", hollow_box, "decompose", dict(hole_handling=hh)
+    yield "hollow box by_concavity", hollow_box, "decompose", dict(hole_order="by_concavity")
     bunny = pathlib.Path(pymeshlab.__file__).parent / "tests" / "sample_meshes" / "bunny.obj"
     yield "bunny best", lambda ms: ms.load_new_mesh(str(bunny)), "decompose", {}
+    yield "bunny max_parts 5", lambda ms: ms.load_new_mesh(str(bunny)), "decompose", dict(max_parts=5)
     yield "keyway skeleton", lambda ms: solid(ms, "keyway"), "skeleton", {}
     yield "flange hull union", lambda ms: solid(ms, "flange"), "union", {}
     robots = None

@@ -401,7 +401,412 @@ TriMesh rebuild_solid(const Decomposition& D, int id)
 
 namespace {
 
-Decomposition decompose_normalized(const Solid& solid, const DecomposeOptions& opt);
+// A candidate plane split and scored.
+struct Trial
+{
+	SplitOutcome so;
+	bool         ok = false;
+	bool         crosses = false;   // keep_cavities: the plane cuts through a kept cavity
+	double       score = 0, sum = 0;
+	int          sliver = -1;       // the side a rejected plane shaved off
+};
+
+// One node's cut: its target (the most concave notch, or a cavity), the candidate planes, their trials.
+struct Cut
+{
+	int                id   = -1;
+	int                hole = -1;   // the cavity cut, or -1 for the notch
+	CutPlaneSelection  sel  = CutPlaneSelection::Best;
+	Vec3               notch = Vec3::Zero();
+	std::vector<Plane> planes;
+	std::vector<Trial> trials;
+	bool               first_fit  = false;   // try planes in order, keep the first that splits
+	bool               by_section = false;   // score by the cut's cross-section (MinSection)
+	int                pick = -1;
+};
+
+// Approx_CD's loop over a work queue of nodes, most concave first, as named stages.
+class Driver
+{
+public:
+	explicit Driver(const DecomposeOptions& opt)
+	    : opt(opt), keep(opt.hole_handling == HoleHandling::KeepCavities), open(Worse{this}),
+	      start(std::chrono::steady_clock::now())
+	{
+		D.tau = opt.tau;
+	}
+
+	Decomposition run(const Solid& solid)
+	{
+		for (int id : root_nodes(solid)) {
+			measure_node(id);
+			c0 = std::max(c0, D.nodes[id].concavity);
+			open.push(id);
+			++parts;
+		}
+		while (!open.empty()) {
+			const int id = open.top();
+			if (!needs_cut(D.nodes[id]) || limit_reached()) break;   // every open node is done, or a bound
+			open.pop();
+			if (too_deep(id)) continue;
+			report_progress(id);
+			cut_node(id);
+		}
+		if (keep)
+			for (int l : D.leaves()) D.kept_cavities += D.nodes[l].cavities;
+		if (opt.progress) opt.progress(100, "Decomposition done");
+		return std::move(D);
+	}
+
+private:
+	// Open nodes, most concave first (ties by path), so a max_parts bound cuts the worst notches;
+	// with hole_order = first, nodes holding a cavity come before all others (infinite concavity).
+	struct Worse
+	{
+		const Driver* d;
+		bool          operator()(int a, int b) const
+		{
+			const Node &A = d->D.nodes[a], &B = d->D.nodes[b];
+			if (d->needs_cut(A) != d->needs_cut(B)) return !d->needs_cut(A);
+			if (d->opt.hole_order == HoleOrder::First && !d->keep && (A.cavities > 0) != (B.cavities > 0))
+				return A.cavities == 0;
+			if (A.concavity != B.concavity) return A.concavity < B.concavity;
+			return A.path > B.path;
+		}
+	};
+
+	const DecomposeOptions& opt;
+	const bool              keep;
+	Decomposition           D;
+	std::vector<std::unique_ptr<Measured>>               measured;   // kept while a node waits to be cut
+	std::priority_queue<int, std::vector<int>, Worse>   open;
+	std::unordered_map<int, int>                         films;   // per node: films dropped (bounded)
+	const std::chrono::steady_clock::time_point          start;
+	double                                               c0    = opt.tau;   // the worst first concavity
+	int                                                  parts = 0;
+
+	// A node is done when it is tau-convex and (unless they are kept) has no cavity left.
+	bool needs_cut(const Node& n) const { return n.concavity > opt.tau || (!keep && n.cavities > 0); }
+
+	int add_node(TriMesh mesh, int parent, const std::string& path)
+	{
+		Node n;
+		n.parent = parent;
+		n.path   = path;
+		n.mesh   = std::move(mesh);
+		D.nodes.push_back(std::move(n));
+		measured.emplace_back();
+		return (int) D.nodes.size() - 1;
+	}
+
+	void measure_node(int id)
+	{
+		Node& n               = D.nodes[id];
+		auto  ms              = std::make_unique<Measured>(n.mesh, keep, opt.tau);
+		n.concavity           = ms->rep.max_concavity;
+		n.hull_distance       = ms->rep.hull_reach;
+		n.hull_distance_bound = ms->rep.hull_reach_bound;
+		n.volume              = signed_volume(n.mesh);
+		n.notches             = ms->rep.notches;
+		n.cavities            = (int) ms->cavities.size();
+		if (ms->rep.max_vertex >= 0) n.notch = ms->surface(n.mesh).V[ms->rep.max_vertex];
+		if (needs_cut(n)) measured[id] = std::move(ms);
+	}
+
+	// Several solids (disjoint shells): no notch lies between them, so the measure would call the
+	// union convex. Split them off first, one per level (A | rest), keeping the tree binary. The
+	// nodes left to cut.
+	std::vector<int> root_nodes(const Solid& solid)
+	{
+		std::vector<TriMesh> solids;
+		if (solid.shells > 1) solids = connected_solids(solid.mesh);
+		if (solids.size() < 2) return {add_node(solid.mesh, -1, "0")};
+		std::vector<int> out;
+		int              node = add_node(solid.mesh, -1, "0");
+		for (size_t k = 0; k + 1 < solids.size(); ++k) {
+			Node& n  = D.nodes[node];
+			n.volume = signed_volume(n.mesh);
+			n.solids = true;
+			const std::string path = n.path;
+			TriMesh           rest;
+			for (size_t j = k + 1; j < solids.size(); ++j) append(rest, solids[j]);
+			const int a = add_node(std::move(solids[k]), node, path + '0');
+			const int b = add_node(k + 2 < solids.size() ? std::move(rest) : std::move(solids[k + 1]), node, path + '1');
+			D.nodes[node].child[0] = a;
+			D.nodes[node].child[1] = b;
+			out.push_back(a);
+			if (k + 2 == solids.size()) out.push_back(b);
+			node = b;
+		}
+		return out;
+	}
+
+	bool limit_reached()
+	{
+		if (opt.max_parts > 0 && parts >= opt.max_parts) return D.max_parts_reached = true;
+		if (opt.time_limit_seconds > 0 &&
+		    std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() > opt.time_limit_seconds)
+			return D.time_limit_reached = true;
+		return false;
+	}
+
+	// A cut that keeps failing to lower the concavity must not recurse forever.
+	bool too_deep(int id)
+	{
+		if (D.nodes[id].path.size() <= kMaxDepth) return false;
+		D.nodes[id].uncut = true;
+		measured[id].reset();
+		return true;
+	}
+
+	void report_progress(int id) const
+	{
+		if (!opt.progress) return;
+		const double cur = D.nodes[id].concavity;
+		int          pct = (int) (100 * std::log(c0 / cur) / std::max(1e-12, std::log(c0 / opt.tau)));
+		char         msg[96];
+		std::snprintf(msg, sizeof msg, "Decomposing: %d parts, worst concavity %.4g", parts, cur);
+		if (!opt.progress(std::clamp(pct, 0, 99), msg)) throw Error(Error::Cancelled, "The decomposition was cancelled.");
+	}
+
+	void cut_node(int id)
+	{
+		Cut c;
+		c.id = id;
+		choose_target(c);
+		candidate_planes_for(c);
+		try_planes(c);
+		pick_plane(c);
+		refine_neck(c);
+		if (c.pick < 0) halve(c);
+		if (c.pick < 0 && drop_film(c)) return;
+		accept(c);
+	}
+
+	// A cavity is cut when holes go first, when the most concave notch lies on one, or when only
+	// cavities are left; the deepest cavity (or the notch's) is the one cut.
+	void choose_target(Cut& c) const
+	{
+		const TriMesh&  mesh = D.nodes[c.id].mesh;
+		const Measured& ms   = *measured[c.id];
+		if (keep || ms.cavities.empty()) return;
+		int    deepest         = -1;
+		bool   notch_on_cavity = false;
+		double depth           = -1;
+		for (int k = 0; k < (int) ms.cavities.size(); ++k)
+			for (int f : ms.cavities[k])
+				for (int v : mesh.F[f]) {
+					notch_on_cavity |= v == ms.rep.max_vertex;
+					if (ms.rep.vertex_concavity[v] > depth) depth = ms.rep.vertex_concavity[v], deepest = k;
+				}
+		if (opt.hole_order == HoleOrder::First || notch_on_cavity || D.nodes[c.id].concavity <= opt.tau) c.hole = deepest;
+	}
+
+	void candidate_planes_for(Cut& c) const
+	{
+		const TriMesh&  mesh = D.nodes[c.id].mesh;
+		const Measured& ms   = *measured[c.id];
+		c.sel = opt.cut_plane_selection;
+		if (c.hole < 0) {
+			c.notch = ms.surface(mesh).V[ms.rep.max_vertex];
+			// A notch on the hull itself has no way out to turn a neck's planes around: the paper's
+			// bisector it is.
+			if (c.sel == CutPlaneSelection::MinSection && !retraction(ms.hull, c.notch)) c.sel = CutPlaneSelection::Bisector;
+			c.planes = candidate_planes(ms.surface(mesh), ms.topo, ms.hull, ms.rep, c.sel, opt.candidate_planes);
+			if (c.sel == CutPlaneSelection::Bisector && c.planes.size() == 1) {
+				// Fall back to the other candidates only if the bisector cannot split.
+				auto more = candidate_planes(ms.surface(mesh), ms.topo, ms.hull, ms.rep, CutPlaneSelection::Best,
+				                             opt.candidate_planes);
+				c.planes.insert(c.planes.end(), more.begin() + std::min<size_t>(1, more.size()), more.end());
+			}
+		}
+		else c.planes = cavity_planes(mesh, ms.cavities[c.hole], ms.hull, opt.hole_handling, opt.candidate_planes, c.notch);
+		// Try planes in order and keep the first that splits (the paper's planes), or score them all.
+		c.first_fit  = c.hole >= 0 ? opt.hole_handling != HoleHandling::BestPlane : c.sel == CutPlaneSelection::Bisector;
+		c.by_section = c.hole < 0 && c.sel == CutPlaneSelection::MinSection;
+		c.trials.assign(c.planes.size(), Trial());
+	}
+
+	// Split the node by candidate i and, with `score`, measure the parts. Trials are independent
+	// (each writes its own slot), so they run on all cores.
+	void trial(Cut& c, size_t i, bool score) const
+	{
+		const TriMesh&  mesh = D.nodes[c.id].mesh;
+		const Measured& ms   = *measured[c.id];
+		const double    v0   = D.nodes[c.id].volume;
+		Trial&          t    = c.trials[i];
+		t                    = Trial();
+		if (!separate(mesh, c.planes[i], c.notch, t.so)) return;
+		// A plane that grazes the part shaves off a sliver and resolves nothing.
+		const double va = signed_volume(t.so.parts[0]), vb = signed_volume(t.so.parts[1]);
+		if (va < 1e-5 * v0 || vb < 1e-5 * v0) {
+			t.sliver = va < vb ? 0 : 1;
+			return;
+		}
+		if (keep)
+			for (const auto& cav : ms.cavities) {
+				bool neg = false, pos = false;
+				for (int f : cav)
+					for (int v : mesh.F[f]) (c.planes[i].eval(mesh.V[v]) > 0 ? pos : neg) = true;
+				t.crosses |= neg && pos;
+			}
+		if (!score) {
+			t.ok = true;
+			return;
+		}
+		if (c.by_section) {
+			t.score = t.so.cap_area;
+			t.ok    = true;
+			return;
+		}
+		try {
+			const double a = part_concavity(t.so.parts[0], keep, opt.tau), b = part_concavity(t.so.parts[1], keep, opt.tau);
+			t.score = std::max(a, b);
+			t.sum   = a + b;
+			t.ok    = true;
+		}
+		catch (const Error&) {   // a part with no volume
+		}
+	}
+
+	// A notch charged with its bridge's reach (no vertex shows that depth) has a dihedral angle that
+	// need not point across the reach: its plane stands unless it only shaves a tau-convex sliver
+	// off and leaves the rest about as concave.
+	void try_planes(Cut& c) const
+	{
+		const bool reach = c.hole < 0 && measured[c.id]->rep.reach_cut;
+		if (c.first_fit) {
+			// The paper's plane first; the others only if it cannot split.
+			int fit = -1;
+			for (size_t i = 0; i < c.planes.size() && fit < 0; ++i) {
+				trial(c, i, reach);
+				if (c.trials[i].ok && !c.trials[i].crosses) fit = (int) i;
+			}
+			const auto shaves = [&](const Trial& t) {
+				return t.sum - t.score <= opt.tau && t.score >= 0.9 * D.nodes[c.id].concavity;
+			};
+			if (reach && (fit < 0 || shaves(c.trials[fit]))) c.first_fit = false;
+		}
+		if (!c.first_fit) parallel_for(c.planes.size(), [&](size_t i) { trial(c, i, true); });
+	}
+
+	// The paper's bisector plane (candidate 0) stands unless another leaves clearly (10%) less
+	// concavity: greedy scores alone would rather shave small arms off one by one. Among the
+	// others, scores within a hair (planes are nudged ~1e-7 of the size off vertices) are ties,
+	// settled by the total concavity.
+	void pick_plane(Cut& c) const
+	{
+		const double hair = 1e-6 * extent(D.nodes[c.id].mesh.V);
+		const auto&  T    = c.trials;
+		int          pick = -1;
+		for (const bool allow_crossing : {false, true}) {   // planes that spare kept cavities first
+			for (int i = 0; i < (int) T.size(); ++i) {
+				const Trial& t = T[i];
+				if (!t.ok || (t.crosses && !allow_crossing)) continue;
+				if (pick < 0 || t.score < T[pick].score - hair || (t.score <= T[pick].score + hair && t.sum < T[pick].sum - hair))
+					pick = i;
+			}
+			if (pick >= 0) break;
+		}
+		// For a notch (not a cavity, whose planes are all scored alike): see above.
+		if (c.hole < 0 && !c.by_section && pick > 0 && T[0].ok && !T[0].crosses && !(T[pick].score < 0.9 * T[0].score))
+			pick = 0;
+		c.pick = pick;
+	}
+
+	// The fan samples the section's area every pi/K: the parabola through the smallest and its
+	// neighbours puts the neck between samples, so the plane turns smoothly as the shape does.
+	void refine_neck(Cut& c) const
+	{
+		if (!c.by_section || c.pick < 0 || measured[c.id]->rep.max_bridge < 0) return;
+		const int    K = (int) c.planes.size();
+		const Trial &l = c.trials[(c.pick + K - 1) % K], &r = c.trials[(c.pick + 1) % K];
+		const double curv = l.score - 2 * c.trials[c.pick].score + r.score;
+		if (K < 3 || !l.ok || !r.ok || !(curv > 0)) return;
+		const double phi  = 0.5 * (l.score - r.score) / curv * M_PI / K;
+		const Vec3   axis = c.planes[0].n.cross(c.planes[1].n).normalized(), n = c.planes[c.pick].n;   // the fan's
+		c.planes.push_back(through(c.notch, std::cos(phi) * n + std::sin(phi) * axis.cross(n)));
+		c.trials.emplace_back();
+		trial(c, c.planes.size() - 1, true);
+		if (c.trials.back().ok && !c.trials.back().crosses && c.trials.back().score < c.trials[c.pick].score)
+			c.pick = (int) c.planes.size() - 1;
+	}
+
+	// No candidate splits (the notch sits where every plane through it shaves a sliver): halve the
+	// part across its principal axes instead, so that it still shrinks towards tau. A curved strip
+	// crossed in its middle falls in three pieces: then cut nearer an end along the same axes.
+	void halve(Cut& c) const
+	{
+		const TriMesh& mesh   = D.nodes[c.id].mesh;
+		const Vec3     centre = surface_moments(mesh, Vec3::Zero()).centroid;
+		for (const double frac : {0.5, 0.3, 0.7, 0.15, 0.85})
+			for (int k = 0; k < 3 && c.pick < 0; ++k) {
+				const Vec3 axis = measured[c.id]->rep.frame.axes.row(k).transpose();
+				double     lo = INFINITY, hi = -INFINITY;
+				for (const Vec3& v : mesh.V) lo = std::min(lo, axis.dot(v - centre)), hi = std::max(hi, axis.dot(v - centre));
+				const double at = frac == 0.5 ? 0.0 : lo + frac * (hi - lo);
+				c.planes.push_back(through(centre + at * axis, axis));
+				c.trials.emplace_back();
+				trial(c, c.planes.size() - 1, false);
+				if (c.trials.back().ok) c.pick = (int) c.planes.size() - 1;
+			}
+	}
+
+	// Still none: the part may carry a film, two sheets of its surface a rounding error apart (a cut
+	// plane a hair off a flat face leaves one). It holds no volume, yet its hull may reach far: drop
+	// the widest film a plane shaves off, and measure the rest again. True if one was dropped.
+	bool drop_film(Cut& c)
+	{
+		if (films[c.id] >= kMaxFilms) return false;
+		int          drop   = -1;
+		double       widest = 0;
+		const double size   = extent(D.nodes[c.id].mesh.V);
+		for (int i = 0; i < (int) c.trials.size(); ++i) {
+			if (c.trials[i].sliver < 0) continue;
+			const TriMesh& f = c.trials[i].so.parts[c.trials[i].sliver];
+			const double   a = surface_area(f);
+			if (std::abs(signed_volume(f)) <= 0.5e-6 * size * a && a > widest) widest = a, drop = i;
+		}
+		if (drop < 0) return false;
+		Trial& t = c.trials[drop];
+		++films[c.id];
+		++D.films_dropped;
+		D.film_volume += std::abs(signed_volume(t.so.parts[t.sliver]));
+		D.nodes[c.id].mesh = std::move(t.so.parts[1 - t.sliver]);
+		measured[c.id].reset();
+		measure_node(c.id);
+		open.push(c.id);
+		return true;
+	}
+
+	// The picked plane makes the node's two children (measured on two cores, then queued); no plane
+	// leaves the node a leaf, reported uncut.
+	void accept(Cut& c)
+	{
+		const int id = c.id;
+		measured[id].reset();
+		if (c.pick < 0) {
+			D.nodes[id].uncut = true;
+			return;
+		}
+		SplitOutcome best     = std::move(c.trials[c.pick].so);
+		D.nodes[id].has_plane = true;
+		D.nodes[id].plane     = best.plane;
+		D.nodes[id].hole_cut  = c.hole >= 0;
+		D.hole_cuts += c.hole >= 0;
+		const std::string path = D.nodes[id].path;
+		for (int s = 0; s < 2; ++s) {
+			const int child      = add_node(std::move(best.parts[s]), id, path + char('0' + s));
+			D.nodes[id].child[s] = child;   // after add_node: it may move D.nodes
+		}
+		parallel_for(2, [&](size_t s) { measure_node(D.nodes[id].child[s]); });
+		for (int s = 0; s < 2; ++s) open.push(D.nodes[id].child[s]);
+		++parts;
+	}
+
+	static constexpr size_t kMaxDepth = 96;   // tree depth (path length) past which a node stays uncut
+	static constexpr int    kMaxFilms = 8;    // films dropped per node, so a node cannot loop
+};
 
 } // namespace
 
@@ -423,7 +828,7 @@ Decomposition decompose(const Solid& solid, const DecomposeOptions& opt)
 	unit.volume /= s * s * s;
 	DecomposeOptions o = opt;
 	o.tau /= s;
-	Decomposition D = decompose_normalized(unit, o);
+	Decomposition D = Driver(o).run(unit);
 	D.tau = opt.tau;
 	for (Node& n : D.nodes) {
 		for (Vec3& p : n.mesh.V) p = p * s + c;
@@ -436,323 +841,5 @@ Decomposition decompose(const Solid& solid, const DecomposeOptions& opt)
 	}
 	return D;
 }
-
-namespace {
-
-Decomposition decompose_normalized(const Solid& solid, const DecomposeOptions& opt)
-{
-	const auto start = std::chrono::steady_clock::now();
-
-	Decomposition D;
-	D.tau = opt.tau;
-
-	// Nodes waiting to be cut keep their measure; others drop it.
-	std::vector<std::unique_ptr<Measured>> measured;
-	auto add_node = [&](TriMesh mesh, int parent, const std::string& path) {
-		Node n;
-		n.parent = parent;
-		n.path   = path;
-		n.mesh   = std::move(mesh);
-		D.nodes.push_back(std::move(n));
-		measured.emplace_back();
-		return (int) D.nodes.size() - 1;
-	};
-	const bool keep = opt.hole_handling == HoleHandling::KeepCavities;
-	// A node is done when it is tau-convex and (unless they are kept) has no cavity left.
-	auto needs_cut = [&](const Node& n) { return n.concavity > opt.tau || (!keep && n.cavities > 0); };
-	auto measure_node = [&](int id) {
-		Node& n         = D.nodes[id];
-		auto  ms        = std::make_unique<Measured>(n.mesh, keep, opt.tau);
-		n.concavity     = ms->rep.max_concavity;
-		n.hull_distance = ms->rep.hull_reach;
-		n.hull_distance_bound = ms->rep.hull_reach_bound;
-		n.volume        = signed_volume(n.mesh);
-		n.notches       = ms->rep.notches;
-		n.cavities      = (int) ms->cavities.size();
-		if (ms->rep.max_vertex >= 0) n.notch = ms->surface(n.mesh).V[ms->rep.max_vertex];
-		if (needs_cut(n)) measured[id] = std::move(ms);
-	};
-
-	// Several solids (disjoint shells): no notch lies between them, so the measure would call the
-	// union convex. Split them off first, one per level (A | rest), keeping the tree binary.
-	std::vector<TriMesh> solids;
-	if (solid.shells > 1) solids = connected_solids(solid.mesh);
-	std::vector<int> first_open;
-	if (solids.size() > 1) {
-		int node = add_node(solid.mesh, -1, "0");
-		for (size_t k = 0; k + 1 < solids.size(); ++k) {
-			Node& n     = D.nodes[node];
-			n.volume    = signed_volume(n.mesh);
-			n.solids    = true;
-			const std::string path = n.path;
-			TriMesh rest;
-			for (size_t j = k + 1; j < solids.size(); ++j) append(rest, solids[j]);
-			const int a = add_node(std::move(solids[k]), node, path + '0');
-			const int b = add_node(k + 2 < solids.size() ? std::move(rest) : std::move(solids[k + 1]), node, path + '1');
-			D.nodes[node].child[0] = a;
-			D.nodes[node].child[1] = b;
-			first_open.push_back(a);
-			if (k + 2 == solids.size()) first_open.push_back(b);
-			node = b;
-		}
-	}
-	else first_open.push_back(add_node(solid.mesh, -1, "0"));
-	double c0 = opt.tau;
-	for (int id : first_open) {
-		measure_node(id);
-		c0 = std::max(c0, D.nodes[id].concavity);
-	}
-
-	// Open nodes, most concave first (ties by path), so a max_parts bound cuts the worst notches;
-	// with hole_order = first, nodes holding a cavity come before all others (infinite concavity).
-	auto worse = [&](int a, int b) {
-		const Node &A = D.nodes[a], &B = D.nodes[b];
-		if (needs_cut(A) != needs_cut(B)) return !needs_cut(A);
-		if (opt.hole_order == HoleOrder::First && !keep && (A.cavities > 0) != (B.cavities > 0)) return A.cavities == 0;
-		if (A.concavity != B.concavity) return A.concavity < B.concavity;
-		return A.path > B.path;
-	};
-	std::priority_queue<int, std::vector<int>, decltype(worse)> open(worse);
-	std::unordered_map<int, int> films;   // per node: films dropped (bounded, so a node cannot loop)
-	for (int id : first_open) open.push(id);
-	int parts = (int) first_open.size();
-	while (!open.empty()) {
-		const int id = open.top();
-		if (!needs_cut(D.nodes[id])) break;   // every open node is done
-		if (opt.max_parts > 0 && parts >= opt.max_parts) {
-			D.max_parts_reached = true;
-			break;
-		}
-		if (opt.time_limit_seconds > 0 &&
-		    std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() > opt.time_limit_seconds) {
-			D.time_limit_reached = true;
-			break;
-		}
-		open.pop();
-		// A cut that keeps failing to lower the concavity must not recurse forever.
-		if (D.nodes[id].path.size() > 96) {
-			D.nodes[id].uncut = true;
-			measured[id].reset();
-			continue;
-		}
-		if (opt.progress) {
-			const double cur = D.nodes[id].concavity;
-			int pct = (int) (100 * std::log(c0 / cur) / std::max(1e-12, std::log(c0 / opt.tau)));
-			char msg[96];
-			std::snprintf(msg, sizeof msg, "Decomposing: %d parts, worst concavity %.4g", parts, cur);
-			if (!opt.progress(std::clamp(pct, 0, 99), msg))
-				throw Error(Error::Cancelled, "The decomposition was cancelled.");
-		}
-
-		const TriMesh&  mesh = D.nodes[id].mesh;
-		const Measured& ms   = *measured[id];
-
-		// A cavity is cut when holes go first, when the most concave notch lies on one, or when
-		// only cavities are left; the deepest cavity (or the notch's) is the one cut.
-		int hole = -1;
-		if (!keep && !ms.cavities.empty()) {
-			int    deepest = -1;
-			bool   notch_on_cavity = false;
-			double depth = -1;
-			for (int c = 0; c < (int) ms.cavities.size(); ++c)
-				for (int f : ms.cavities[c])
-					for (int v : mesh.F[f]) {
-						notch_on_cavity |= v == ms.rep.max_vertex;
-						if (ms.rep.vertex_concavity[v] > depth) depth = ms.rep.vertex_concavity[v], deepest = c;
-					}
-			if (opt.hole_order == HoleOrder::First || notch_on_cavity || D.nodes[id].concavity <= opt.tau)
-				hole = deepest;
-		}
-		std::vector<Plane> planes;
-		Vec3               notch;
-		CutPlaneSelection sel = opt.cut_plane_selection;
-		if (hole < 0) {
-			notch = ms.surface(mesh).V[ms.rep.max_vertex];
-			// A notch on the hull itself has no way out to turn a neck's planes around: the paper's
-			// bisector it is.
-			if (sel == CutPlaneSelection::MinSection && !retraction(ms.hull, notch)) sel = CutPlaneSelection::Bisector;
-			planes = candidate_planes(ms.surface(mesh), ms.topo, ms.hull, ms.rep, sel, opt.candidate_planes);
-			if (sel == CutPlaneSelection::Bisector && planes.size() == 1) {
-				// Fall back to the other candidates only if the bisector cannot split.
-				auto more = candidate_planes(ms.surface(mesh), ms.topo, ms.hull, ms.rep, CutPlaneSelection::Best, opt.candidate_planes);
-				planes.insert(planes.end(), more.begin() + std::min<size_t>(1, more.size()), more.end());
-			}
-		}
-		else planes = cavity_planes(mesh, ms.cavities[hole], ms.hull, opt.hole_handling, opt.candidate_planes, notch);
-		// Try planes in order and keep the first that splits (the paper's planes), or score them all.
-		bool       first_fit  = hole >= 0 ? opt.hole_handling != HoleHandling::BestPlane : sel == CutPlaneSelection::Bisector;
-		const bool by_section = hole < 0 && sel == CutPlaneSelection::MinSection;
-
-		// Split and score every candidate plane; candidates are independent, so use all cores.
-		struct Trial
-		{
-			SplitOutcome so;
-			bool         ok = false;
-			bool         crosses = false;   // keep_cavities: the plane cuts through a kept cavity
-			double       score = 0, sum = 0;
-			int          sliver = -1;       // the side a rejected plane shaved off
-		};
-		std::vector<Trial> trials(planes.size());
-		const double       v0 = D.nodes[id].volume;
-		auto               run_trial = [&](size_t i, bool score) {
-            Trial& t = trials[i];
-            t        = Trial();
-            if (!separate(mesh, planes[i], notch, t.so)) return;
-            // A plane that grazes the part shaves off a sliver and resolves nothing.
-            const double va = signed_volume(t.so.parts[0]), vb = signed_volume(t.so.parts[1]);
-            if (va < 1e-5 * v0 || vb < 1e-5 * v0) {
-                t.sliver = va < vb ? 0 : 1;
-                return;
-            }
-            if (keep)
-                for (const auto& c : ms.cavities) {
-                    bool neg = false, pos = false;
-                    for (int f : c)
-                        for (int v : mesh.F[f]) (planes[i].eval(mesh.V[v]) > 0 ? pos : neg) = true;
-                    t.crosses |= neg && pos;
-                }
-            if (!score) {
-                t.ok = true;
-                return;
-            }
-            if (by_section) {
-                t.score = t.so.cap_area;
-                t.ok    = true;
-                return;
-            }
-            try {
-                const double a = part_concavity(t.so.parts[0], keep, opt.tau), b = part_concavity(t.so.parts[1], keep, opt.tau);
-                t.score = std::max(a, b);
-                t.sum   = a + b;
-                t.ok    = true;
-            }
-            catch (const Error&) {   // a part with no volume
-            }
-		};
-		// A notch charged with its bridge's reach (no vertex shows that depth) has a dihedral angle that
-		// need not point across the reach: its plane stands unless it only shaves a tau-convex sliver
-		// off and leaves the rest about as concave.
-		const bool reach = hole < 0 && ms.rep.reach_cut;
-		if (first_fit) {
-			// The paper's plane first; the others only if it cannot split.
-			int fit = -1;
-			for (size_t i = 0; i < planes.size() && fit < 0; ++i) {
-				run_trial(i, reach);
-				if (trials[i].ok && !trials[i].crosses) fit = (int) i;
-			}
-			const auto shaves = [&](const Trial& t) {
-				return t.sum - t.score <= opt.tau && t.score >= 0.9 * D.nodes[id].concavity;
-			};
-			if (reach && (fit < 0 || shaves(trials[fit]))) first_fit = false;
-		}
-		if (!first_fit) parallel_for(planes.size(), [&](size_t i) { run_trial(i, true); });
-
-		// The paper's bisector plane (candidate 0) stands unless another leaves clearly (10%) less
-		// concavity: greedy scores alone would rather shave small arms off one by one. Among the
-		// others, scores within a hair (planes are nudged ~1e-7 of the size off vertices) are ties,
-		// settled by the total concavity.
-		const double hair = 1e-6 * extent(mesh.V);
-		int          pick = -1;
-		for (const bool allow_crossing : {false, true}) {   // planes that spare kept cavities first
-			for (int i = 0; i < (int) trials.size(); ++i) {
-				const Trial& t = trials[i];
-				if (!t.ok || (t.crosses && !allow_crossing)) continue;
-				if (pick < 0 || t.score < trials[pick].score - hair ||
-				    (t.score <= trials[pick].score + hair && t.sum < trials[pick].sum - hair))
-					pick = i;
-			}
-			if (pick >= 0) break;
-		}
-		// For a notch (not a cavity, whose planes are all scored alike): see above.
-		if (hole < 0 && !by_section && pick > 0 && trials[0].ok && !trials[0].crosses &&
-		    !(trials[pick].score < 0.9 * trials[0].score))
-			pick = 0;
-		// The fan samples the section's area every pi/K: the parabola through the smallest and its
-		// neighbours puts the neck between samples, so the plane turns smoothly as the shape does.
-		if (by_section && pick >= 0 && ms.rep.max_bridge >= 0) {
-			const int    K = (int) planes.size();
-			const Trial &l = trials[(pick + K - 1) % K], &r = trials[(pick + 1) % K];
-			const double curv = l.score - 2 * trials[pick].score + r.score;
-			if (K >= 3 && l.ok && r.ok && curv > 0) {
-				const double phi = 0.5 * (l.score - r.score) / curv * M_PI / K;
-				const Vec3   axis = planes[0].n.cross(planes[1].n).normalized(), n = planes[pick].n;   // the fan's
-				planes.push_back(through(notch, std::cos(phi) * n + std::sin(phi) * axis.cross(n)));
-				trials.emplace_back();
-				run_trial(planes.size() - 1, true);
-				if (trials.back().ok && !trials.back().crosses && trials.back().score < trials[pick].score)
-					pick = (int) planes.size() - 1;
-			}
-		}
-		// No candidate splits (the notch sits where every plane through it shaves a sliver): halve the
-		// part across its principal axes instead, so that it still shrinks towards tau. A curved strip
-		// crossed in its middle falls in three pieces: then cut nearer an end along the same axes.
-		if (pick < 0) {
-			const Vec3 centre = surface_moments(mesh, Vec3::Zero()).centroid;
-			for (const double frac : {0.5, 0.3, 0.7, 0.15, 0.85})
-				for (int k = 0; k < 3 && pick < 0; ++k) {
-					const Vec3 axis = ms.rep.frame.axes.row(k).transpose();
-					double     lo = INFINITY, hi = -INFINITY;
-					for (const Vec3& v : mesh.V) lo = std::min(lo, axis.dot(v - centre)), hi = std::max(hi, axis.dot(v - centre));
-					const double at = frac == 0.5 ? 0.0 : lo + frac * (hi - lo);
-					planes.push_back(through(centre + at * axis, axis));
-					trials.emplace_back();
-					run_trial(planes.size() - 1, false);
-					if (trials.back().ok) pick = (int) planes.size() - 1;
-				}
-		}
-		// Still none: the part may carry a film, two sheets of its surface a rounding error apart (a cut
-		// plane a hair off a flat face leaves one). It holds no volume, yet its hull may reach far: drop
-		// the widest film a plane shaves off, and measure the rest again.
-		if (pick < 0 && films[id] < 8) {
-			int    drop = -1;
-			double widest = 0;
-			const double size = extent(mesh.V);
-			for (int i = 0; i < (int) trials.size(); ++i) {
-				if (trials[i].sliver < 0) continue;
-				const TriMesh& f = trials[i].so.parts[trials[i].sliver];
-				const double   a = surface_area(f);
-				if (std::abs(signed_volume(f)) <= 0.5e-6 * size * a && a > widest) widest = a, drop = i;
-			}
-			if (drop >= 0) {
-				Trial& t = trials[drop];
-				++films[id];
-				++D.films_dropped;
-				D.film_volume += std::abs(signed_volume(t.so.parts[t.sliver]));
-				D.nodes[id].mesh = std::move(t.so.parts[1 - t.sliver]);
-				measured[id].reset();
-				measure_node(id);
-				open.push(id);
-				continue;
-			}
-		}
-		const bool   found = pick >= 0;
-		SplitOutcome best;
-		if (found) best = std::move(trials[pick].so);
-		measured[id].reset();
-		if (!found) {
-			D.nodes[id].uncut = true;   // stays a leaf; reported
-			continue;
-		}
-		D.nodes[id].has_plane = true;
-		D.nodes[id].plane     = best.plane;
-		D.nodes[id].hole_cut  = hole >= 0;
-		D.hole_cuts += hole >= 0;
-		const std::string path = D.nodes[id].path;
-		for (int s = 0; s < 2; ++s) {
-			const int c          = add_node(std::move(best.parts[s]), id, path + char('0' + s));
-			D.nodes[id].child[s] = c;   // after add_node: it may move D.nodes
-		}
-		// The two halves are independent: measure them on two cores.
-		parallel_for(2, [&](size_t s) { measure_node(D.nodes[id].child[s]); });
-		for (int s = 0; s < 2; ++s) open.push(D.nodes[id].child[s]);
-		++parts;
-	}
-	if (keep)
-		for (int l : D.leaves()) D.kept_cavities += D.nodes[l].cavities;
-	if (opt.progress) opt.progress(100, "Decomposition done");
-	return D;
-}
-
-} // namespace
 
 } // namespace acd
