@@ -753,12 +753,12 @@ FilterACD::decomposePolygon(const RichParameterList& par, MeshDocument& md, vcg:
 	const double size = acd::enclosing_diameter(pts);
 	const double tau  = par.getFloat("tau");
 	if (!(tau > 0) || !std::isfinite(tau)) throw MLException(QString("tau must be positive (got %1).").arg(tau));
-	acd::DecomposeOptions o;
-	o.tau                 = par.getEnum("tau_unit") == 0 ? tau / 100.0 * size : tau;
-	o.cut_plane_selection = par.getEnum("cut_line_selection") == 0 ? acd::CutPlaneSelection::Best
-	                                                                : acd::CutPlaneSelection::Bisector;
-	o.hole_handling = std::array{acd::HoleHandling::BestPlane, acd::HoleHandling::PrincipalPlane,
-	                             acd::HoleHandling::KeepCavities}[std::clamp(par.getEnum("hole_handling"), 0, 2)];
+	acd::PolygonOptions o;
+	o.tau                = par.getEnum("tau_unit") == 0 ? tau / 100.0 * size : tau;
+	o.cut_line_selection = par.getEnum("cut_line_selection") == 0 ? acd::CutLineSelection::Best
+	                                                               : acd::CutLineSelection::Bisector;
+	o.hole_handling = std::array{acd::HoleCut::BestLine, acd::HoleCut::PrincipalAxis,
+	                             acd::HoleCut::KeepHoles}[std::clamp(par.getEnum("hole_handling"), 0, 2)];
 	o.hole_order    = par.getEnum("hole_order") == 1 ? acd::HoleOrder::ByConcavity : acd::HoleOrder::First;
 	o.max_parts     = par.getInt("max_parts");
 	if (o.max_parts < 0) throw MLException("max_parts must be 0 (no limit) or positive.");

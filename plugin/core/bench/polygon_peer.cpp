@@ -67,14 +67,14 @@ int main(int argc, char** argv)
 		std::stringstream taus(argv[2]);
 		std::string       tok;
 		while (std::getline(taus, tok, ',')) {
-			for (auto sel : {acd::CutPlaneSelection::Bisector, acd::CutPlaneSelection::Best}) {
-				acd::DecomposeOptions o;
-				o.tau                 = std::atof(tok.c_str());
-				o.cut_plane_selection = sel;
+			for (auto sel : {acd::CutLineSelection::Bisector, acd::CutLineSelection::Best}) {
+				acd::PolygonOptions o;
+				o.tau                = std::atof(tok.c_str());
+				o.cut_line_selection = sel;
 				const auto t0 = std::chrono::steady_clock::now();
 				const auto D  = acd::decompose(P, o);
 				std::printf("{\"method\":\"ours_%s\",\"tau\":%s,\"parts\":%zu,\"seconds\":%.6f}\n",
-				            sel == acd::CutPlaneSelection::Best ? "best" : "bisector", tok.c_str(), D.leaves().size(),
+				            sel == acd::CutLineSelection::Best ? "best" : "bisector", tok.c_str(), D.leaves().size(),
 				            seconds_since(t0));
 			}
 		}

@@ -1,6 +1,7 @@
 #include "acd/decompose.h"
 #include "acd/hull_reach.h"
 #include "acd/parallel.h"
+#include "recursion.h"
 
 #include <Eigen/Eigenvalues>
 
@@ -23,6 +24,12 @@
 #include <unordered_map>
 
 namespace acd {
+
+// The recursion's hole count of a 3D node: its cavities.
+int holes_in(const Node& n)
+{
+	return n.cavities;
+}
 
 double enclosing_diameter(const std::vector<Vec3>& pts)
 {
@@ -425,68 +432,65 @@ struct Cut
 	int                pick = -1;
 };
 
-// Approx_CD's loop over a work queue of nodes, most concave first, as named stages.
+// Approx_CD for a solid, as named stages; the recursion's queue and limits are shared with 2D.
 class Driver
 {
 public:
-	explicit Driver(const DecomposeOptions& opt)
-	    : opt(opt), keep(opt.hole_handling == HoleHandling::KeepCavities), open(Worse{this}),
-	      start(std::chrono::steady_clock::now())
+	explicit Driver(const DecomposeOptions& opt) : opt(opt), keep(opt.hole_handling == HoleHandling::KeepCavities), rec(D.nodes, limits_of(opt))
 	{
 		D.tau = opt.tau;
 	}
 
 	Decomposition run(const Solid& solid)
 	{
-		for (int id : root_nodes(solid)) {
-			measure_node(id);
-			c0 = std::max(c0, D.nodes[id].concavity);
-			open.push(id);
-			++parts;
-		}
-		while (!open.empty()) {
-			const int id = open.top();
-			if (!needs_cut(D.nodes[id]) || limit_reached()) break;   // every open node is done, or a bound
-			open.pop();
-			if (too_deep(id)) continue;
-			report_progress(id);
-			cut_node(id);
-		}
+		const std::vector<int> roots = root_nodes(solid);
+		for (int id : roots) measure_node(id);
+		rec.start_with(roots);
+		rec.run(*this);
+		D.max_parts_reached  = rec.max_parts_reached;
+		D.time_limit_reached = rec.time_limit_reached;
 		if (keep)
 			for (int l : D.leaves()) D.kept_cavities += D.nodes[l].cavities;
-		if (opt.progress) opt.progress(100, "Decomposition done");
 		return std::move(D);
 	}
 
-private:
-	// Open nodes, most concave first (ties by path), so a max_parts bound cuts the worst notches;
-	// with hole_order = first, nodes holding a cavity come before all others (infinite concavity).
-	struct Worse
+	// One node: its target, candidate planes, their trials, the pick; the parts added.
+	int cut(int id)
 	{
-		const Driver* d;
-		bool          operator()(int a, int b) const
-		{
-			const Node &A = d->D.nodes[a], &B = d->D.nodes[b];
-			if (d->needs_cut(A) != d->needs_cut(B)) return !d->needs_cut(A);
-			if (d->opt.hole_order == HoleOrder::First && !d->keep && (A.cavities > 0) != (B.cavities > 0))
-				return A.cavities == 0;
-			if (A.concavity != B.concavity) return A.concavity < B.concavity;
-			return A.path > B.path;
-		}
-	};
+		Cut c;
+		c.id = id;
+		choose_target(c);
+		candidate_planes_for(c);
+		try_planes(c);
+		pick_plane(c);
+		refine_neck(c);
+		if (c.pick < 0) halve(c);
+		if (c.pick < 0 && drop_film(c)) return 0;
+		return accept(c);
+	}
 
-	const DecomposeOptions& opt;
-	const bool              keep;
-	Decomposition           D;
-	std::vector<std::unique_ptr<Measured>>               measured;   // kept while a node waits to be cut
-	std::priority_queue<int, std::vector<int>, Worse>   open;
-	std::unordered_map<int, int>                         films;   // per node: films dropped (bounded)
-	const std::chrono::steady_clock::time_point          start;
-	double                                               c0    = opt.tau;   // the worst first concavity
-	int                                                  parts = 0;
+	void forget(int id) { measured[id].reset(); }
 
-	// A node is done when it is tau-convex and (unless they are kept) has no cavity left.
-	bool needs_cut(const Node& n) const { return n.concavity > opt.tau || (!keep && n.cavities > 0); }
+private:
+	static RecursionLimits limits_of(const DecomposeOptions& opt)
+	{
+		RecursionLimits l;
+		l.tau                = opt.tau;
+		l.keep_holes         = opt.hole_handling == HoleHandling::KeepCavities;
+		l.hole_order         = opt.hole_order;
+		l.max_parts          = opt.max_parts;
+		l.time_limit_seconds = opt.time_limit_seconds;
+		l.max_depth          = kMaxDepth;
+		l.progress           = opt.progress;
+		return l;
+	}
+
+	const DecomposeOptions&                opt;
+	const bool                             keep;
+	Decomposition                          D;
+	std::vector<std::unique_ptr<Measured>> measured;   // kept while a node waits to be cut
+	std::unordered_map<int, int>           films;      // per node: films dropped (bounded)
+	Recursion<Node>                        rec;
 
 	int add_node(TriMesh mesh, int parent, const std::string& path)
 	{
@@ -510,7 +514,7 @@ private:
 		n.notches             = ms->rep.notches;
 		n.cavities            = (int) ms->cavities.size();
 		if (ms->rep.max_vertex >= 0) n.notch = ms->surface(n.mesh).V[ms->rep.max_vertex];
-		if (needs_cut(n)) measured[id] = std::move(ms);
+		if (rec.needs_cut(n)) measured[id] = std::move(ms);
 	}
 
 	// Several solids (disjoint shells): no notch lies between them, so the measure would call the
@@ -539,48 +543,6 @@ private:
 			node = b;
 		}
 		return out;
-	}
-
-	bool limit_reached()
-	{
-		if (opt.max_parts > 0 && parts >= opt.max_parts) return D.max_parts_reached = true;
-		if (opt.time_limit_seconds > 0 &&
-		    std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() > opt.time_limit_seconds)
-			return D.time_limit_reached = true;
-		return false;
-	}
-
-	// A cut that keeps failing to lower the concavity must not recurse forever.
-	bool too_deep(int id)
-	{
-		if (D.nodes[id].path.size() <= kMaxDepth) return false;
-		D.nodes[id].uncut = true;
-		measured[id].reset();
-		return true;
-	}
-
-	void report_progress(int id) const
-	{
-		if (!opt.progress) return;
-		const double cur = D.nodes[id].concavity;
-		int          pct = (int) (100 * std::log(c0 / cur) / std::max(1e-12, std::log(c0 / opt.tau)));
-		char         msg[96];
-		std::snprintf(msg, sizeof msg, "Decomposing: %d parts, worst concavity %.4g", parts, cur);
-		if (!opt.progress(std::clamp(pct, 0, 99), msg)) throw Error(Error::Cancelled, "The decomposition was cancelled.");
-	}
-
-	void cut_node(int id)
-	{
-		Cut c;
-		c.id = id;
-		choose_target(c);
-		candidate_planes_for(c);
-		try_planes(c);
-		pick_plane(c);
-		refine_neck(c);
-		if (c.pick < 0) halve(c);
-		if (c.pick < 0 && drop_film(c)) return;
-		accept(c);
 	}
 
 	// A cavity is cut when holes go first, when the most concave notch lies on one, or when only
@@ -775,19 +737,19 @@ private:
 		D.nodes[c.id].mesh = std::move(t.so.parts[1 - t.sliver]);
 		measured[c.id].reset();
 		measure_node(c.id);
-		open.push(c.id);
+		rec.push(c.id);
 		return true;
 	}
 
 	// The picked plane makes the node's two children (measured on two cores, then queued); no plane
 	// leaves the node a leaf, reported uncut.
-	void accept(Cut& c)
+	int accept(Cut& c)
 	{
 		const int id = c.id;
 		measured[id].reset();
 		if (c.pick < 0) {
 			D.nodes[id].uncut = true;
-			return;
+			return 0;
 		}
 		SplitOutcome best     = std::move(c.trials[c.pick].so);
 		D.nodes[id].has_plane = true;
@@ -800,8 +762,8 @@ private:
 			D.nodes[id].child[s] = child;   // after add_node: it may move D.nodes
 		}
 		parallel_for(2, [&](size_t s) { measure_node(D.nodes[id].child[s]); });
-		for (int s = 0; s < 2; ++s) open.push(D.nodes[id].child[s]);
-		++parts;
+		for (int s = 0; s < 2; ++s) rec.push(D.nodes[id].child[s]);
+		return 1;
 	}
 
 	static constexpr size_t kMaxDepth = 96;   // tree depth (path length) past which a node stays uncut

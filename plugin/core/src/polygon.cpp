@@ -1,5 +1,6 @@
 #include "acd/polygon.h"
 #include "acd/parallel.h"
+#include "recursion.h"
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 
@@ -16,6 +17,12 @@
 #include <sstream>
 
 namespace acd {
+
+// The recursion's hole count of a polygon node.
+int holes_in(const Node2& n)
+{
+	return n.holes;
+}
 
 namespace {
 
@@ -539,197 +546,246 @@ Line2 line_through(const Vec2& p, const Vec2& dir)
 	return l;
 }
 
-Decomposition2 decompose_unit(const Polygon2& poly, const DecomposeOptions& opt)
+// A candidate cut: from a point (an outer vertex, or -1 for a hole's centre) along a direction.
+struct Cand
 {
-	const bool keep = opt.hole_handling == HoleHandling::KeepCavities;
-	Decomposition2 D;
-	D.tau = opt.tau;
-	auto needs_cut = [&](const Node2& n) { return n.concavity > opt.tau || (!keep && n.holes > 0); };
+	Vec2 from, dir;
+	int  vertex;
+};
+
+struct Trial2
+{
+	std::array<Polygon2, 2> parts;
+	Vec2                    a, b;
+	bool                    ok = false, crosses = false;
+	double                  score = 0, sum = 0;
+};
+
+// One polygon's cut: its target (the most concave notch, or a hole), candidate lines, their trials.
+struct Cut2
+{
+	int                 id = -1, hole = -1;
+	std::vector<Cand>   cands;
+	std::vector<Trial2> trials;
+	bool                first_fit = false;
+	int                 pick = -1;
+};
+
+// Algorithm 5.3 for a polygon with holes, as named stages; the recursion is the one 3D uses.
+class Driver2
+{
+public:
+	explicit Driver2(const PolygonOptions& opt)
+	    : opt(opt), keep(opt.hole_handling == HoleCut::KeepHoles), rec(D.nodes, limits_of(opt))
+	{
+		D.tau = opt.tau;
+	}
+
+	Decomposition2 run(const Polygon2& poly)
+	{
+		rec.start_with({add_node(poly, -1, "0")});
+		rec.run(*this);
+		D.max_parts_reached  = rec.max_parts_reached;
+		D.time_limit_reached = rec.time_limit_reached;
+		if (keep)
+			for (int l : D.leaves()) D.kept_holes += D.nodes[l].holes;
+		return std::move(D);
+	}
+
+	int cut(int id)
+	{
+		Cut2 c;
+		c.id = id;
+		choose_target(c);
+		if (c.hole >= 0) hole_lines(c);
+		else notch_lines(c);
+		try_lines(c);
+		pick_line(c);
+		return accept(c);
+	}
+
+	void forget(int) {}
+
+private:
+	static RecursionLimits limits_of(const PolygonOptions& opt)
+	{
+		RecursionLimits l;
+		l.tau                = opt.tau;
+		l.keep_holes         = opt.hole_handling == HoleCut::KeepHoles;
+		l.hole_order         = opt.hole_order;
+		l.max_parts          = opt.max_parts;
+		l.time_limit_seconds = opt.time_limit_seconds;
+		l.max_depth          = kMaxDepth;
+		l.progress           = opt.progress;
+		return l;
+	}
+
+	const PolygonOptions&   opt;
+	const bool              keep;
+	Decomposition2          D;
 	std::vector<Concavity2> measured;
-	auto add_node = [&](Polygon2 p, int parent, const std::string& path) {
+	Recursion<Node2>        rec;
+
+	int add_node(Polygon2 p, int parent, const std::string& path)
+	{
 		Node2 n;
-		n.parent  = parent;
-		n.path    = path;
-		n.polygon = std::move(p);
+		n.parent           = parent;
+		n.path             = path;
+		n.polygon          = std::move(p);
 		const Concavity2 c = measure_concavity(n.polygon);
-		n.concavity = c.max_concavity;
-		n.notches   = c.notches;
-		n.holes     = (int) n.polygon.holes.size();
-		n.area      = area(n.polygon);
+		n.concavity        = c.max_concavity;
+		n.notches          = c.notches;
+		n.holes            = (int) n.polygon.holes.size();
+		n.area             = area(n.polygon);
 		if (c.max_vertex >= 0) n.notch = n.polygon.outer[c.max_vertex];
 		D.nodes.push_back(std::move(n));
 		measured.push_back(c);
 		return (int) D.nodes.size() - 1;
-	};
-	auto worse = [&](int a, int b) {
-		const Node2 &A = D.nodes[a], &B = D.nodes[b];
-		if (needs_cut(A) != needs_cut(B)) return !needs_cut(A);
-		if (opt.hole_order == HoleOrder::First && !keep && (A.holes > 0) != (B.holes > 0)) return A.holes == 0;
-		if (A.concavity != B.concavity) return A.concavity < B.concavity;
-		return A.path > B.path;
-	};
-	std::priority_queue<int, std::vector<int>, decltype(worse)> open(worse);
-	open.push(add_node(poly, -1, "0"));
-	const double c0    = std::max(opt.tau, D.nodes[0].concavity);
-	int          parts = 1;
-	while (!open.empty()) {
-		const int id = open.top();
-		if (!needs_cut(D.nodes[id])) break;
-		if (opt.max_parts > 0 && parts >= opt.max_parts) {
-			D.max_parts_reached = true;
-			break;
-		}
-		open.pop();
-		if (D.nodes[id].path.size() > 200) {
-			D.nodes[id].uncut = true;
-			continue;
-		}
-		if (opt.progress) {
-			const double cur = std::max(D.nodes[id].concavity, opt.tau);
-			int pct = (int) (100 * std::log(c0 / cur) / std::max(1e-12, std::log(c0 / opt.tau)));
-			char msg[96];
-			std::snprintf(msg, sizeof msg, "Decomposing: %d pieces", parts);
-			if (!opt.progress(std::clamp(pct, 0, 99), msg)) throw Error(Error::Cancelled, "The decomposition was cancelled.");
-		}
-		const Polygon2&   P = D.nodes[id].polygon;
-		const Concavity2& c = measured[id];
-		const int         n = (int) P.outer.size();
+	}
 
-		// Which hole, if any: holes first (the paper), or when a hole is deeper than every notch,
-		// or when only holes are left.
-		int hole = -1;
-		if (!keep && !P.holes.empty()) {
-			hole = (int) (std::max_element(c.holes.begin(), c.holes.end()) - c.holes.begin());
-			if (opt.hole_order == HoleOrder::ByConcavity && c.holes[hole] <= c.max_concavity && c.max_concavity > opt.tau)
-				hole = -1;
-		}
-		struct Cand
-		{
-			Vec2 from, dir;
-			int  vertex;
-		};
-		std::vector<Cand> cands;
-		bool              first_fit;
-		if (hole >= 0) {
-			Vec2            centre;
-			Eigen::Matrix2d axes;
-			hole_axes(P.holes[hole], centre, axes);
-			cands.push_back({centre, axes.col(0), -1});   // the paper: the principal axis
-			cands.push_back({centre, axes.col(1), -1});
-			for (int k = 1; k < 8; ++k)
-				if (k != 4) cands.push_back({centre, Eigen::Rotation2Dd(M_PI * k / 8) * axes.col(0), -1});
-			first_fit = opt.hole_handling != HoleHandling::BestPlane;
-		}
-		else {
-			const int  r = c.max_vertex;
-			const Vec2 prev = P.outer[(r + n - 1) % n], cur = P.outer[r], next = P.outer[(r + 1) % n];
-			const Vec2 u1 = (cur - prev).normalized(), u2 = (cur - next).normalized();   // edges extended past r
-			// The bisector of the incident edges' normals, pointing into the polygon (Algorithm 5.1's
-			// cut line); it lies between u1 and u2, the directions that resolve the notch.
-			Vec2 bis = u1 + u2;
-			if (bis.norm() < 1e-12) bis = Vec2(-u1.y(), u1.x());
-			cands.push_back({cur, bis.normalized(), r});
-			if (opt.cut_plane_selection != CutPlaneSelection::Bisector) {   // min_section is 3D only: as best
-				const double span = std::atan2(cross(u1, u2), u1.dot(u2));   // from u1 to u2
-				const int    m    = std::max(2, opt.candidate_planes);
-				// the cone's own edges too: a cut continuing an edge can reach the next notch in line
-				for (int k = 0; k <= m + 1; ++k) cands.push_back({cur, Eigen::Rotation2Dd(span * k / (m + 1)) * u1, r});
-				// towards the nearest other notches within that cone (cutting two at once)
-				std::vector<std::pair<double, int>> near;
-				for (int v = 0; v < n; ++v)
-					if (v != r && c.outer[v] > opt.tau) near.push_back({(P.outer[v] - cur).norm(), v});
-				std::sort(near.begin(), near.end());
-				for (size_t i = 0; i < near.size() && i < 6; ++i) {
-					const Vec2 d = (P.outer[near[i].second] - cur).normalized();
-					const double a = std::atan2(cross(u1, d), u1.dot(d));
-					const double tol = 1e-9;
-					if ((span > 0 && a > -tol && a < span + tol) || (span < 0 && a < tol && a > span - tol))
-						cands.push_back({cur, d, r});
-				}
-			}
-			first_fit = opt.cut_plane_selection == CutPlaneSelection::Bisector;
-		}
+	// Which hole, if any: holes first (the paper), or when a hole is deeper than every notch, or when
+	// only holes are left.
+	void choose_target(Cut2& c) const
+	{
+		const Polygon2&   P = D.nodes[c.id].polygon;
+		const Concavity2& m = measured[c.id];
+		if (keep || P.holes.empty()) return;
+		c.hole = (int) (std::max_element(m.holes.begin(), m.holes.end()) - m.holes.begin());
+		if (opt.hole_order == HoleOrder::ByConcavity && m.holes[c.hole] <= m.max_concavity && m.max_concavity > opt.tau)
+			c.hole = -1;
+	}
 
-		struct Trial
-		{
-			std::array<Polygon2, 2> parts;
-			Vec2                    a, b;
-			bool                    ok = false, crosses = false;
-			double                  score = 0, sum = 0;
-		};
-		std::vector<Trial> trials(cands.size());
-		const double       a0 = D.nodes[id].area;
-		auto run = [&](size_t i) {
-			Trial& t = trials[i];
-			if (!separate(P, cands[i].from, cands[i].vertex, cands[i].dir, t.parts, &t.a, &t.b)) return;
-			if (area(t.parts[0]) < 1e-9 * a0 || area(t.parts[1]) < 1e-9 * a0) return;
-			const int holes_after = (int) (t.parts[0].holes.size() + t.parts[1].holes.size());
-			if (hole >= 0 && holes_after >= (int) P.holes.size()) return;   // missed the hole
-			t.crosses = keep && holes_after < (int) P.holes.size();
-			t.ok      = true;
-			if (first_fit) return;
-			const Scored x = score(t.parts[0], keep), y = score(t.parts[1], keep);
-			t.score = std::max(x.conc, y.conc);
-			t.sum   = x.conc + y.conc;
-		};
-		if (first_fit) {
-			for (size_t i = 0; i < cands.size(); ++i) {
-				run(i);
-				if (trials[i].ok && !trials[i].crosses) break;
-			}
+	// Through the hole's centre: the paper's principal axis first, the minor axis, then a fan.
+	void hole_lines(Cut2& c) const
+	{
+		Vec2            centre;
+		Eigen::Matrix2d axes;
+		hole_axes(D.nodes[c.id].polygon.holes[c.hole], centre, axes);
+		c.cands.push_back({centre, axes.col(0), -1});
+		c.cands.push_back({centre, axes.col(1), -1});
+		for (int k = 1; k < 8; ++k)
+			if (k != 4) c.cands.push_back({centre, Eigen::Rotation2Dd(M_PI * k / 8) * axes.col(0), -1});
+		c.first_fit = opt.hole_handling != HoleCut::BestLine;
+	}
+
+	// The bisector of the notch's incident edge normals, pointing into the polygon (Algorithm 5.1's
+	// cut line); it lies between u1 and u2, the directions that resolve the notch. With Best also
+	// the cone between them, its own edges (a cut continuing an edge can reach the next notch in
+	// line) and the directions towards the nearest notches inside it (cutting two at once).
+	void notch_lines(Cut2& c) const
+	{
+		const Polygon2&   P = D.nodes[c.id].polygon;
+		const Concavity2& m = measured[c.id];
+		const int         n = (int) P.outer.size(), r = m.max_vertex;
+		const Vec2 prev = P.outer[(r + n - 1) % n], cur = P.outer[r], next = P.outer[(r + 1) % n];
+		const Vec2 u1 = (cur - prev).normalized(), u2 = (cur - next).normalized();   // edges extended past r
+		Vec2       bis = u1 + u2;
+		if (bis.norm() < 1e-12) bis = Vec2(-u1.y(), u1.x());
+		c.cands.push_back({cur, bis.normalized(), r});
+		c.first_fit = opt.cut_line_selection == CutLineSelection::Bisector;
+		if (c.first_fit) return;
+		const double span = std::atan2(cross(u1, u2), u1.dot(u2));   // from u1 to u2
+		const int    k_max = std::max(2, opt.candidate_lines);
+		for (int k = 0; k <= k_max + 1; ++k) c.cands.push_back({cur, Eigen::Rotation2Dd(span * k / (k_max + 1)) * u1, r});
+		std::vector<std::pair<double, int>> near;
+		for (int v = 0; v < n; ++v)
+			if (v != r && m.outer[v] > opt.tau) near.push_back({(P.outer[v] - cur).norm(), v});
+		std::sort(near.begin(), near.end());
+		for (size_t i = 0; i < near.size() && i < 6; ++i) {
+			const Vec2   d   = (P.outer[near[i].second] - cur).normalized();
+			const double a   = std::atan2(cross(u1, d), u1.dot(d));
+			const double tol = 1e-9;
+			if ((span > 0 && a > -tol && a < span + tol) || (span < 0 && a < tol && a > span - tol)) c.cands.push_back({cur, d, r});
 		}
-		else parallel_for(cands.size(), run);
+	}
+
+	// Split by candidate i; unless first-fit, score the pieces (notches, and holes by their depth).
+	void trial(Cut2& c, size_t i) const
+	{
+		const Polygon2& P  = D.nodes[c.id].polygon;
+		Trial2&         t  = c.trials[i];
+		if (!separate(P, c.cands[i].from, c.cands[i].vertex, c.cands[i].dir, t.parts, &t.a, &t.b)) return;
+		const double a0 = D.nodes[c.id].area;
+		if (area(t.parts[0]) < 1e-9 * a0 || area(t.parts[1]) < 1e-9 * a0) return;
+		const int holes_after = (int) (t.parts[0].holes.size() + t.parts[1].holes.size());
+		if (c.hole >= 0 && holes_after >= (int) P.holes.size()) return;   // missed the hole
+		t.crosses = keep && holes_after < (int) P.holes.size();
+		t.ok      = true;
+		if (c.first_fit) return;
+		const Scored x = score(t.parts[0], keep), y = score(t.parts[1], keep);
+		t.score = std::max(x.conc, y.conc);
+		t.sum   = x.conc + y.conc;
+	}
+
+	void try_lines(Cut2& c) const
+	{
+		c.trials.assign(c.cands.size(), Trial2());
+		if (!c.first_fit) {
+			parallel_for(c.cands.size(), [&](size_t i) { trial(c, i); });
+			return;
+		}
+		for (size_t i = 0; i < c.cands.size(); ++i) {
+			trial(c, i);
+			if (c.trials[i].ok && !c.trials[i].crosses) break;
+		}
+	}
+
+	// The least concave pieces (ties by the total). As in 3D, the paper's bisector stands unless
+	// another direction is clearly (10%) better; here also when it leaves the same worst concavity
+	// but clearly less in total (a cut resolving two notches at once, as across a comb's tooth).
+	void pick_line(Cut2& c) const
+	{
 		const double hair = 1e-9;
+		const auto&  T    = c.trials;
 		int          pick = -1;
 		for (const bool allow_crossing : {false, true}) {
-			for (int i = 0; i < (int) trials.size(); ++i) {
-				const Trial& t = trials[i];
+			for (int i = 0; i < (int) T.size(); ++i) {
+				const Trial2& t = T[i];
 				if (!t.ok || (t.crosses && !allow_crossing)) continue;
-				if (pick < 0 || t.score < trials[pick].score - hair ||
-				    (t.score <= trials[pick].score + hair && t.sum < trials[pick].sum - hair))
+				if (pick < 0 || t.score < T[pick].score - hair || (t.score <= T[pick].score + hair && t.sum < T[pick].sum - hair))
 					pick = i;
 			}
 			if (pick >= 0) break;
 		}
-		// As in 3D, the paper's bisector stands unless another direction is clearly (10%) better; here
-		// also when it leaves the same worst concavity but clearly less in total (a cut resolving two
-		// notches at once, as across a comb's tooth).
-		if (hole < 0 && pick > 0 && trials[0].ok && !trials[0].crosses) {
-			const Trial &b = trials[0], &t = trials[pick];
+		if (c.hole < 0 && pick > 0 && T[0].ok && !T[0].crosses) {
+			const Trial2 &b = T[0], &t = T[pick];
 			const bool better = t.score < 0.9 * b.score || (t.score <= b.score + hair && t.sum < 0.9 * b.sum);
 			if (!better) pick = 0;
 		}
-		if (pick < 0) {
+		c.pick = pick;
+	}
+
+	int accept(Cut2& c)
+	{
+		const int id = c.id;
+		if (c.pick < 0) {
 			D.nodes[id].uncut = true;
-			continue;
+			return 0;
 		}
-		Trial& t = trials[pick];
-		{
-			Node2& nd   = D.nodes[id];
-			nd.has_cut  = true;
-			nd.cut_from = t.a;
-			nd.cut_to   = t.b;
-			nd.line     = line_through(t.a, t.b - t.a);
-			nd.hole_cut = hole >= 0;
-		}
-		D.hole_cuts += hole >= 0;
-		const std::string path = D.nodes[id].path;
+		Trial2& t = c.trials[c.pick];
+		Node2&  nd = D.nodes[id];
+		nd.has_cut  = true;
+		nd.cut_from = t.a;
+		nd.cut_to   = t.b;
+		nd.line     = line_through(t.a, t.b - t.a);
+		nd.hole_cut = c.hole >= 0;
+		D.hole_cuts += c.hole >= 0;
+		const std::string path = nd.path;
 		for (int s = 0; s < 2; ++s) {
 			const int ch         = add_node(std::move(t.parts[s]), id, path + char('0' + s));
 			D.nodes[id].child[s] = ch;
-			open.push(ch);
+			rec.push(ch);
 		}
-		++parts;
+		return 1;
 	}
-	if (keep)
-		for (int l : D.leaves()) D.kept_holes += D.nodes[l].holes;
-	if (opt.progress) opt.progress(100, "Decomposition done");
-	return D;
-}
+
+	// Greedy cuts peel a comb's teeth one per level: deeper trees than in 3D are normal.
+	static constexpr size_t kMaxDepth = 200;
+};
 
 } // namespace
 
-Decomposition2 decompose(const Polygon2& polygon, const DecomposeOptions& opt)
+Decomposition2 decompose(const Polygon2& polygon, const PolygonOptions& opt)
 {
 	if (!(opt.tau > 0) || !std::isfinite(opt.tau))
 		throw Error(Error::InvalidOption, "tau must be a positive, finite length.");
@@ -745,9 +801,9 @@ Decomposition2 decompose(const Polygon2& polygon, const DecomposeOptions& opt)
 	};
 	Polygon2 unit{to_unit(polygon.outer), {}};
 	for (const Loop2& h : polygon.holes) unit.holes.push_back(to_unit(h));
-	DecomposeOptions o = opt;
+	PolygonOptions o = opt;
 	o.tau /= s;
-	Decomposition2 D = decompose_unit(unit, o);
+	Decomposition2 D = Driver2(o).run(unit);
 	D.tau = opt.tau;
 	auto back = [&](Vec2& p) { p = p * s + c; };
 	for (Node2& n : D.nodes) {

@@ -64,16 +64,40 @@ struct Decomposition2
 	std::vector<Node2> nodes;
 	double             tau = 0;
 	bool               max_parts_reached = false;
+	bool               time_limit_reached = false;
 	int                hole_cuts = 0;
 	int                kept_holes = 0;
 	std::vector<int>   leaves() const;   // in path order
 	double             max_leaf_concavity() const;
 };
 
-// Options are the 3D ones: tau, cut_plane_selection (the cut line), hole_handling (PrincipalPlane = the
-// principal axis, BestPlane = the best of several lines through the hole, KeepCavities = keep holes),
-// hole_order, max_parts, candidate_planes (directions tried per notch), progress.
-Decomposition2 decompose(const Polygon2& polygon, const DecomposeOptions& options);
+enum class CutLineSelection
+{
+	Bisector,   // the paper: the bisector of the notch's edge normals
+	Best        // several directions in the notch's cone (and towards notches in it), least concave pieces
+};
+
+enum class HoleCut
+{
+	PrincipalAxis,   // the paper: the line through the hole's centre along its major axis
+	BestLine,        // the best-scored of several lines through the hole's centre
+	KeepHoles        // never cut for a hole: pieces may keep holes (reported)
+};
+
+struct PolygonOptions
+{
+	double           tau = 0;   // model units; > 0
+	CutLineSelection cut_line_selection = CutLineSelection::Best;
+	int              max_parts = 0;         // 0 = unbounded
+	int              candidate_lines = 6;   // directions tried inside a notch's cone (Best)
+	HoleCut          hole_handling = HoleCut::BestLine;
+	HoleOrder        hole_order = HoleOrder::First;
+	double           time_limit_seconds = 0;   // 0 = none
+	// Called with a percentage and a short status; return false to cancel (throws Error(Cancelled)).
+	std::function<bool(int, const char*)> progress;
+};
+
+Decomposition2 decompose(const Polygon2& polygon, const PolygonOptions& options);
 
 // Split `p` into exactly two polygons by the cut through `from` (an outer vertex index `vertex`, or -1
 // for a point inside a hole) along the line `line`. False if the line cannot split `p` there.
