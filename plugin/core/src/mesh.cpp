@@ -234,9 +234,11 @@ void orient_by_nesting(Solid& s, const std::vector<int>& comp, int ncomp)
 	s.flipped = s.reoriented_shells > 0;
 }
 
-} // namespace
+// make_solid's stages. Each refuses what it finds with the repair that fixes it.
 
-Solid make_solid(const TriMesh& in)
+// Coordinates finite, faces present, indices valid; the referenced vertices, compacted (s.mesh.V).
+// Returns the map from input to compacted vertex ids.
+std::vector<int> compact_vertices(const TriMesh& in, Solid& s)
 {
 	if (in.V.empty()) invalid("The mesh is empty: it has no vertices.");
 	if (in.F.empty())
@@ -245,9 +247,6 @@ Solid make_solid(const TriMesh& in)
 		        "'Surface Reconstruction: Screened Poisson' or 'Alpha Wrap'.");
 	for (const Vec3& p : in.V)
 		if (!p.allFinite()) invalid("The mesh has vertices with NaN or infinite coordinates.");
-
-	Solid s;
-	// Compact: keep referenced vertices only.
 	std::vector<int> remap(in.V.size(), -1);
 	for (const Tri& t : in.F)
 		for (int k = 0; k < 3; ++k) {
@@ -259,14 +258,24 @@ Solid make_solid(const TriMesh& in)
 			}
 		}
 	s.unreferenced_vertices = (int) (in.V.size() - s.mesh.V.size());
+	return remap;
+}
 
+// The size, within the range the arithmetic can take.
+double checked_size(const Solid& s)
+{
 	const double diag = bbox_diagonal(s.mesh.V);
 	if (!(diag > 0) || !std::isfinite(diag)) invalid("The mesh is degenerate: all its vertices coincide.");
 	// Coordinates so large that squared lengths overflow, or so small that they underflow.
 	if (diag > 1e150 || diag < 1e-150)
 		invalid("The mesh's size (bounding box diagonal " + std::to_string(diag) +
 		        ") is outside the range the decomposition can compute with; rescale it.");
+	return diag;
+}
 
+// The faces on compacted vertices (s.mesh.F): none repeating a vertex, of zero area, or twice.
+void checked_faces(const TriMesh& in, const std::vector<int>& remap, Solid& s)
+{
 	int degenerate = 0, repeated = 0;
 	for (const Tri& t : in.F) {
 		Tri r{remap[t[0]], remap[t[1]], remap[t[2]]};
@@ -284,31 +293,33 @@ Solid make_solid(const TriMesh& in)
 	if (degenerate > 0)
 		invalid(std::to_string(degenerate) + " faces have zero area. Run 'Remove Zero Area Faces' "
 		        "(meshing_remove_null_faces) first.");
-
 	// Duplicated faces (same three vertices, either orientation) would otherwise be reported as
 	// non-manifold or misoriented edges, which sends the user to the wrong repair.
-	{
-		std::vector<Tri> keys(s.mesh.F);
-		for (Tri& t : keys) std::sort(t.begin(), t.end());
-		std::sort(keys.begin(), keys.end());
-		const long dup = (long) (keys.end() - std::unique(keys.begin(), keys.end()));
-		if (dup > 0)
-			invalid(std::to_string(dup) + " faces duplicate other faces. Run 'Remove Duplicate Faces' "
-			        "(meshing_remove_duplicate_faces) first.");
-	}
+	std::vector<Tri> keys(s.mesh.F);
+	for (Tri& t : keys) std::sort(t.begin(), t.end());
+	std::sort(keys.begin(), keys.end());
+	const long dup = (long) (keys.end() - std::unique(keys.begin(), keys.end()));
+	if (dup > 0)
+		invalid(std::to_string(dup) + " faces duplicate other faces. Run 'Remove Duplicate Faces' "
+		        "(meshing_remove_duplicate_faces) first.");
+}
 
-	// Edge use: each undirected edge must be used by exactly two faces, once in each direction.
+// Edge use: each undirected edge used by exactly two faces, once in each direction.
+void check_edges(const TriMesh& m)
+{
 	std::unordered_map<EdgeKey, int, EdgeHash> directed;
-	directed.reserve(s.mesh.F.size() * 3);
-	for (const Tri& t : s.mesh.F)
+	directed.reserve(m.F.size() * 3);
+	for (const Tri& t : m.F)
 		for (int k = 0; k < 3; ++k) ++directed[EdgeKey{t[k], t[(k + 1) % 3]}];
 	long boundary = 0, nonmanifold = 0, misoriented = 0;
 	for (const auto& [e, n] : directed) {
-		auto it = directed.find(EdgeKey{e.b, e.a});
-		int back = it == directed.end() ? 0 : it->second;
-		int total = n + back;
+		auto it    = directed.find(EdgeKey{e.b, e.a});
+		int  back  = it == directed.end() ? 0 : it->second;
+		int  total = n + back;
 		if (total == 1) ++boundary;
-		else if (total > 2) { if (e.a < e.b) ++nonmanifold; }
+		else if (total > 2) {
+			if (e.a < e.b) ++nonmanifold;
+		}
 		else if (n == 2) ++misoriented;   // both uses in the same direction
 	}
 	if (boundary > 0)
@@ -325,74 +336,80 @@ Solid make_solid(const TriMesh& in)
 		invalid("The mesh's faces are not consistently oriented (" + std::to_string(misoriented) +
 		        " edges are used twice in the same direction). Run 'Re-Orient all faces coherently' "
 		        "(meshing_re_orient_faces_coherently).");
+}
 
-	// Split non-manifold vertices: walk each fan of corners around a vertex across its edges; a
-	// vertex reached by a second fan gets a copy of its own.
-	{
-		const std::vector<Tri> orig = s.mesh.F;
-		const int              nf   = (int) orig.size();
-		std::unordered_map<EdgeKey, int, EdgeHash> face_of;   // directed edge -> its face
-		face_of.reserve(nf * 3);
-		for (int f = 0; f < nf; ++f)
-			for (int k = 0; k < 3; ++k) face_of[EdgeKey{orig[f][k], orig[f][(k + 1) % 3]}] = f;
-		std::vector<char> seen(nf * 3, 0);
-		std::vector<char> has_fan(s.mesh.V.size(), 0);
-		for (int f = 0; f < nf; ++f)
-			for (int k = 0; k < 3; ++k) {
-				if (seen[f * 3 + k]) continue;
-				const int v      = orig[f][k];
-				int       target = v;
-				if (has_fan[v]) {
-					target = (int) s.mesh.V.size();
-					s.mesh.V.push_back(s.mesh.V[v]);
-					s.source_vertex.push_back(s.source_vertex[v]);
-					++s.split_vertices;
-				}
-				has_fan[v] = 1;
-				int cf = f, ck = k;
-				while (!seen[cf * 3 + ck]) {
-					seen[cf * 3 + ck] = 1;
-					s.mesh.F[cf][ck]  = target;
-					// this face holds the directed edge (prev -> v); the next face holds (v -> prev)
-					const int prev = orig[cf][(ck + 2) % 3];
-					auto      it   = face_of.find(EdgeKey{v, prev});
-					if (it == face_of.end()) break;
-					cf = it->second;
-					ck = 0;
-					while (orig[cf][ck] != v) ++ck;
-				}
+// Split non-manifold vertices: walk each fan of corners around a vertex across its edges; a vertex
+// reached by a second fan gets a copy of its own.
+void split_vertex_fans(Solid& s)
+{
+	const std::vector<Tri> orig = s.mesh.F;
+	const int              nf   = (int) orig.size();
+	std::unordered_map<EdgeKey, int, EdgeHash> face_of;   // directed edge -> its face
+	face_of.reserve(nf * 3);
+	for (int f = 0; f < nf; ++f)
+		for (int k = 0; k < 3; ++k) face_of[EdgeKey{orig[f][k], orig[f][(k + 1) % 3]}] = f;
+	std::vector<char> seen(nf * 3, 0);
+	std::vector<char> has_fan(s.mesh.V.size(), 0);
+	for (int f = 0; f < nf; ++f)
+		for (int k = 0; k < 3; ++k) {
+			if (seen[f * 3 + k]) continue;
+			const int v      = orig[f][k];
+			int       target = v;
+			if (has_fan[v]) {
+				target = (int) s.mesh.V.size();
+				s.mesh.V.push_back(s.mesh.V[v]);
+				s.source_vertex.push_back(s.source_vertex[v]);
+				++s.split_vertices;
 			}
-	}
-
-	// Cuts assume the surface bounds one solid; overlapping or folded sheets can make parts that are
-	// not closed. Counted, not refused: scanned meshes often cross themselves a little (the host
-	// decides; the decomposition itself never returns an open part).
-	{
-		using K = CGAL::Exact_predicates_inexact_constructions_kernel;
-		std::vector<K::Point_3> pts;
-		pts.reserve(s.mesh.V.size());
-		for (const Vec3& p : s.mesh.V) pts.emplace_back(p.x(), p.y(), p.z());
-		std::vector<std::array<std::size_t, 3>> tris;
-		tris.reserve(s.mesh.F.size());
-		for (const Tri& t : s.mesh.F) tris.push_back({(std::size_t) t[0], (std::size_t) t[1], (std::size_t) t[2]});
-		std::vector<std::pair<std::size_t, std::size_t>> pairs;
-		CGAL::Polygon_mesh_processing::triangle_soup_self_intersections(pts, tris, std::back_inserter(pairs));
-		// Faces that share a corner, or nearly do, may cross by a rounding error (tiny triangles
-		// of earlier cuts do): not a fold of the surface.
-		const double near2 = std::pow(1e-9 * diag, 2);
-		long&        crossing = s.self_intersections;
-		for (const auto& [f, g] : pairs) {
-			bool touch = false;
-			for (int a : s.mesh.F[f])
-				for (int b : s.mesh.F[g]) touch |= a == b || (s.mesh.V[a] - s.mesh.V[b]).squaredNorm() <= near2;
-			crossing += !touch;
+			has_fan[v] = 1;
+			int cf = f, ck = k;
+			while (!seen[cf * 3 + ck]) {
+				seen[cf * 3 + ck] = 1;
+				s.mesh.F[cf][ck]  = target;
+				// this face holds the directed edge (prev -> v); the next face holds (v -> prev)
+				const int prev = orig[cf][(ck + 2) % 3];
+				auto      it   = face_of.find(EdgeKey{v, prev});
+				if (it == face_of.end()) break;
+				cf = it->second;
+				ck = 0;
+				while (orig[cf][ck] != v) ++ck;
+			}
 		}
-	}
+}
 
+// Cuts assume the surface bounds one solid; overlapping or folded sheets can make parts that are not
+// closed. Counted, not refused: scanned meshes often cross themselves a little (the host decides;
+// the decomposition itself never returns an open part).
+long self_crossings(const TriMesh& m, double diag)
+{
+	using K = CGAL::Exact_predicates_inexact_constructions_kernel;
+	std::vector<K::Point_3> pts;
+	pts.reserve(m.V.size());
+	for (const Vec3& p : m.V) pts.emplace_back(p.x(), p.y(), p.z());
+	std::vector<std::array<std::size_t, 3>> tris;
+	tris.reserve(m.F.size());
+	for (const Tri& t : m.F) tris.push_back({(std::size_t) t[0], (std::size_t) t[1], (std::size_t) t[2]});
+	std::vector<std::pair<std::size_t, std::size_t>> pairs;
+	CGAL::Polygon_mesh_processing::triangle_soup_self_intersections(pts, tris, std::back_inserter(pairs));
+	// Faces that share a corner, or nearly do, may cross by a rounding error (tiny triangles of
+	// earlier cuts do): not a fold of the surface.
+	const double near2    = std::pow(1e-9 * diag, 2);
+	long         crossing = 0;
+	for (const auto& [f, g] : pairs) {
+		bool touch = false;
+		for (int a : m.F[f])
+			for (int b : m.F[g]) touch |= a == b || (m.V[a] - m.V[b]).squaredNorm() <= near2;
+		crossing += !touch;
+	}
+	return crossing;
+}
+
+// Shells oriented by their nesting, the whole outward; refused if it holds no volume.
+void orient(Solid& s, double diag)
+{
 	const std::vector<int> comp = face_components(s.mesh, &s.shells);
 	// Nesting costs shells x faces ray tests; beyond a few hundred shells (debris, particle sets)
-	// the shells keep their given orientation.
-	// Shells that cross each other (counted above) have no nesting to go by.
+	// the shells keep their given orientation. Shells that cross each other have no nesting to go by.
 	if (s.shells > 1 && s.shells <= 256 && s.self_intersections == 0) orient_by_nesting(s, comp, s.shells);
 	s.volume = signed_volume(s.mesh);
 	if (!(std::abs(s.volume) > 1e-12 * diag * diag * diag))
@@ -403,6 +420,20 @@ Solid make_solid(const TriMesh& in)
 		s.volume  = -s.volume;
 		s.flipped = true;
 	}
+}
+
+} // namespace
+
+Solid make_solid(const TriMesh& in)
+{
+	Solid                  s;
+	const std::vector<int> remap = compact_vertices(in, s);
+	const double           diag  = checked_size(s);
+	checked_faces(in, remap, s);
+	check_edges(s.mesh);
+	split_vertex_fans(s);
+	s.self_intersections = self_crossings(s.mesh, diag);
+	orient(s, diag);
 	return s;
 }
 
