@@ -59,60 +59,47 @@ ConvexHull::~ConvexHull()                                = default;
 ConvexHull::ConvexHull(ConvexHull&&) noexcept            = default;
 ConvexHull& ConvexHull::operator=(ConvexHull&&) noexcept = default;
 
-ConvexHull::ConvexHull(const std::vector<Vec3>& input)
+namespace {
+
+// CGAL's hull of the points, and where each distinct point first occurs in the input.
+SMesh cgal_hull(const std::vector<Vec3>& input, std::unordered_map<Point, int, BitsHash>& index)
 {
 	std::vector<Point> pts;
 	pts.reserve(input.size());
-	std::unordered_map<Point, int, BitsHash> index;   // first input index of each distinct point
 	index.reserve(input.size());
 	for (int i = 0; i < (int) input.size(); ++i) {
 		pts.push_back(to_cgal(input[i]));
 		index.emplace(pts.back(), i);
 	}
 	if (index.size() < 4) throw Error(Error::InvalidInput, "Fewer than 4 distinct points: no volume.");
-
 	SMesh sm;
 	CGAL::convex_hull_3(pts.begin(), pts.end(), sm);
 	if (sm.number_of_faces() < 4 || !CGAL::is_triangle_mesh(sm))
 		throw Error(Error::InvalidInput, "The points are coplanar: the shape encloses no volume.");
+	return sm;
+}
 
-	std::unordered_map<SMesh::Vertex_index, int> vid;
-	for (auto v : sm.vertices()) {
-		vid[v] = (int) points.size();
-		points.push_back(to_vec(sm.point(v)));
-		point_source.push_back(index.at(sm.point(v)));
-	}
-	std::unordered_map<SMesh::Face_index, int> fid;
-	for (auto f : sm.faces()) {
-		Tri t;
-		int k = 0;
-		for (auto v : CGAL::vertices_around_face(sm.halfedge(f), sm)) t[k++] = vid[v];
-		fid[f] = (int) triangles.size();
-		triangles.push_back(t);
-	}
-
-	// Merge coplanar neighbouring triangles into facets. "Coplanar" to rounding, not exactly: a cut's
-	// cap is planar only up to the rounding of its crossing points, and which way that rounding falls
-	// depends on the pose, so an exact test would split the same cap into different facets (and
-	// spurious bridges) when the object is rotated. A triangle's normal is known to about
-	// noise / height, so two normals that agree within their two uncertainties are the same plane
-	// (noise: 1e-12 of the extent, generous for coordinates of unit size).
+// Coplanar neighbouring triangles merged into groups (union-find roots per triangle). "Coplanar" to
+// rounding, not exactly: a cut's cap is planar only up to the rounding of its crossing points, and
+// which way that rounding falls depends on the pose, so an exact test would split the same cap into
+// different facets (and spurious bridges) when the object is rotated. A triangle's normal is known to
+// about noise / height, so two normals that agree within their two uncertainties are the same plane
+// (noise: 1e-12 of the extent, generous for coordinates of unit size). `across[t]`: (edge length,
+// neighbouring triangle) over t's edges.
+std::vector<int> coplanar_groups(const std::vector<Vec3>& points, const std::vector<Tri>& triangles,
+                                 std::vector<std::vector<std::pair<double, int>>>& across)
+{
 	double extent = 0;
 	for (const Vec3& p : points) extent = std::max(extent, (p - points[0]).norm());
 	const double noise = 1e-12 * extent;
 	// A sliver (nearly collinear corners, as cut outlines give) has no normal of its own worth the
-	// name: it joins a proper neighbouring facet afterwards, whose plane holds it to rounding
-	// (across its longest edge when that neighbour is proper; slivers next to slivers wait for a
-	// later pass). Merging slivers by their normals would chain unrelated facets together.
-	std::vector<char>                                 proper(triangles.size(), 1);
-	std::vector<double>                               height(triangles.size());
-	std::vector<Vec3>                                 normal(triangles.size());
-	std::vector<std::vector<std::pair<double, int>>> across(triangles.size());   // (edge length, face)
-	for (auto f : sm.faces()) {
-		const int t = fid[f];
-		for (auto h : CGAL::halfedges_around_face(sm.halfedge(f), sm))
-			across[t].emplace_back((to_vec(sm.point(sm.target(h))) - to_vec(sm.point(sm.source(h)))).norm(),
-			                       fid[sm.face(sm.opposite(h))]);
+	// name: it joins a proper neighbouring facet afterwards, whose plane holds it to rounding (across
+	// its longest edge when that neighbour is proper; slivers next to slivers wait for a later pass).
+	// Merging slivers by their normals would chain unrelated facets together.
+	std::vector<char>   proper(triangles.size(), 1);
+	std::vector<double> height(triangles.size());
+	std::vector<Vec3>   normal(triangles.size());
+	for (int t = 0; t < (int) triangles.size(); ++t) {
 		std::sort(across[t].rbegin(), across[t].rend());
 		const Tri& T = triangles[t];
 		const Vec3 n = (points[T[1]] - points[T[0]]).cross(points[T[2]] - points[T[0]]);
@@ -140,10 +127,52 @@ ConvexHull::ConvexHull(const std::vector<Vec3>& input)
 				}
 		}
 	}
+	for (int t = 0; t < (int) triangles.size(); ++t) parent[t] = root(parent, t);
+	return parent;
+}
+
+} // namespace
+
+ConvexHull::ConvexHull(const std::vector<Vec3>& input)
+{
+	std::unordered_map<Point, int, BitsHash> index;   // first input index of each distinct point
+	const SMesh                              sm = cgal_hull(input, index);
+	std::unordered_map<SMesh::Vertex_index, int> vid;
+	for (auto v : sm.vertices()) {
+		vid[v] = (int) points.size();
+		points.push_back(to_vec(sm.point(v)));
+		point_source.push_back(index.at(sm.point(v)));
+	}
+	std::unordered_map<SMesh::Face_index, int> fid;
+	for (auto f : sm.faces()) {
+		Tri t;
+		int k = 0;
+		for (auto v : CGAL::vertices_around_face(sm.halfedge(f), sm)) t[k++] = vid[v];
+		fid[f] = (int) triangles.size();
+		triangles.push_back(t);
+	}
+	std::vector<std::vector<std::pair<double, int>>> across(triangles.size());   // (edge length, face)
+	for (auto f : sm.faces())
+		for (auto h : CGAL::halfedges_around_face(sm.halfedge(f), sm))
+			across[fid[f]].emplace_back((to_vec(sm.point(sm.target(h))) - to_vec(sm.point(sm.source(h)))).norm(),
+			                            fid[sm.face(sm.opposite(h))]);
+	index_facets(coplanar_groups(points, triangles, across));
+	index_corners();
+	tree_ = std::make_unique<Tree>();
+	for (const Tri& t : triangles)
+		tree_->tris.emplace_back(to_cgal(points[t[0]]), to_cgal(points[t[1]]), to_cgal(points[t[2]]));
+	tree_->aabb.insert(tree_->tris.cbegin(), tree_->tris.cend());
+	tree_->aabb.accelerate_distance_queries();
+}
+
+// Facets numbered in order of their first triangle; their planes (area-weighted normal, through the
+// centroid of their corners) and areas; the hull's volume.
+void ConvexHull::index_facets(const std::vector<int>& group)
+{
 	std::unordered_map<int, int> facet_id;
 	triangle_facet.resize(triangles.size());
 	for (int t = 0; t < (int) triangles.size(); ++t) {
-		auto [it, fresh] = facet_id.emplace(root(parent, t), (int) facet_id.size());
+		auto [it, fresh] = facet_id.emplace(group[t], (int) facet_id.size());
 		if (fresh) facet_triangles.emplace_back();
 		triangle_facet[t] = it->second;
 		facet_triangles[it->second].push_back(t);
@@ -151,7 +180,7 @@ ConvexHull::ConvexHull(const std::vector<Vec3>& input)
 	facet_plane.resize(facet_triangles.size());
 	facet_area.assign(facet_triangles.size(), 0.0);
 	for (int f = 0; f < (int) facet_triangles.size(); ++f) {
-		Vec3 n = Vec3::Zero();   // area-weighted normal of the facet's triangles
+		Vec3 n = Vec3::Zero();
 		Vec3 c = Vec3::Zero();
 		for (int t : facet_triangles[f]) {
 			const Vec3 &a = points[triangles[t][0]], &b = points[triangles[t][1]], &d = points[triangles[t][2]];
@@ -165,6 +194,11 @@ ConvexHull::ConvexHull(const std::vector<Vec3>& input)
 		facet_plane[f].d = facet_plane[f].n.dot(c);
 	}
 	volume = signed_volume(TriMesh{points, triangles});
+}
+
+// Each hull vertex's triangles (CSR), and one of them.
+void ConvexHull::index_corners()
+{
 	point_triangle.assign(points.size(), -1);
 	corner_start_.assign(points.size() + 1, 0);
 	for (int t = 0; t < (int) triangles.size(); ++t)
@@ -177,12 +211,6 @@ ConvexHull::ConvexHull(const std::vector<Vec3>& input)
 	std::vector<int> fill(corner_start_.begin(), corner_start_.end() - 1);
 	for (int t = 0; t < (int) triangles.size(); ++t)
 		for (int v : triangles[t]) corner_tris_[fill[v]++] = t;
-
-	tree_ = std::make_unique<Tree>();
-	for (const Tri& t : triangles)
-		tree_->tris.emplace_back(to_cgal(points[t[0]]), to_cgal(points[t[1]]), to_cgal(points[t[2]]));
-	tree_->aabb.insert(tree_->tris.cbegin(), tree_->tris.cend());
-	tree_->aabb.accelerate_distance_queries();
 }
 
 double ConvexHull::distance_to_boundary(const Vec3& p, int* triangle, int near, Vec3* closest) const

@@ -41,6 +41,8 @@ public:
 	TriMesh mesh() const;
 
 private:
+	void index_facets(const std::vector<int>& group);   // group: per triangle, its coplanar group
+	void index_corners();
 	std::vector<int> corner_start_, corner_tris_;   // CSR: hull vertex -> its triangles
 	struct Tree;
 	std::unique_ptr<Tree> tree_;
