@@ -1,0 +1,187 @@
+// Level of detail from a finished tree, and a subtree's solid rebuilt from its leaves.
+#include "acd/decompose.h"
+#include "acd/hull_reach.h"
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <map>
+#include <set>
+
+namespace acd {
+
+namespace {
+
+std::vector<int> level_where(const Decomposition& D, const std::function<bool(int)>& whole)
+{
+	std::vector<int> out, stack{0};
+	while (!stack.empty()) {
+		const int id = stack.back();
+		stack.pop_back();
+		if (D.nodes[id].leaf() || whole(id)) out.push_back(id);
+		else stack.insert(stack.end(), {D.nodes[id].child[1], D.nodes[id].child[0]});
+	}
+	std::sort(out.begin(), out.end(), [&](int a, int b) { return D.nodes[a].path < D.nodes[b].path; });
+	return out;
+}
+
+bool within_by_notches(const Decomposition& D, const Node& n, double tau)
+{
+	return n.concavity <= tau && !n.solids && (n.cavities == 0 || D.kept_cavities > 0);
+}
+
+} // namespace
+
+std::vector<int> level_of_detail(const Decomposition& D, double tau, int depth)
+{
+	return level_where(D, [&](int id) {
+		const Node& n = D.nodes[id];
+		return depth >= 0 ? (int) n.path.size() - 1 >= depth : within_by_notches(D, n, tau);
+	});
+}
+
+std::vector<int> level_of_detail_within(const Decomposition& D, double tau, const std::vector<TriMesh>& hull)
+{
+	return level_where(D, [&](int id) {
+		if (!within_by_notches(D, D.nodes[id], tau)) return false;
+		const TriMesh    solid = rebuild_solid(D, id);
+		const ConvexHull h(id < (int) hull.size() && !hull[id].V.empty() ? hull[id].V : solid.V);
+		const HullReach  r = hull_reach(solid, h, std::vector<char>(h.facets(), 1), tau, 0.01 * tau);
+		return r.upper <= 1.01 * tau;
+	});
+}
+
+namespace {
+
+// The leaves below node `id` and the planes of the cuts between them.
+void subtree(const Decomposition& D, int id, std::vector<int>& leaves, std::vector<Plane>& cuts)
+{
+	std::vector<int> stack{id};
+	while (!stack.empty()) {
+		const Node& n = D.nodes[stack.back()];
+		const int   k = stack.back();
+		stack.pop_back();
+		if (n.leaf()) leaves.push_back(k);
+		else {
+			if (n.has_plane) cuts.push_back(n.plane);
+			stack.push_back(n.child[0]);
+			stack.push_back(n.child[1]);
+		}
+	}
+}
+
+// The leaves welded (cap vertices are bit-identical copies on both sides), cap faces dropped.
+TriMesh weld_without_caps(const Decomposition& D, const std::vector<int>& leaves, const std::vector<Plane>& cuts,
+                          double eps)
+{
+	TriMesh                              all;
+	std::map<std::array<double, 3>, int> at;
+	for (int l : leaves) {
+		const TriMesh&   m = D.nodes[l].mesh;
+		std::vector<int> id_of(m.V.size());
+		for (size_t v = 0; v < m.V.size(); ++v) {
+			auto [it, fresh] = at.emplace(std::array<double, 3>{m.V[v].x(), m.V[v].y(), m.V[v].z()}, (int) all.V.size());
+			if (fresh) all.V.push_back(m.V[v]);
+			id_of[v] = it->second;
+		}
+		for (const Tri& t : m.F) {
+			bool cap = false;
+			for (const Plane& pl : cuts) {
+				bool on = true;
+				for (int v : t) on = on && std::abs(pl.eval(m.V[v])) <= eps;
+				cap = cap || on;
+			}
+			if (!cap) all.F.push_back({id_of[t[0]], id_of[t[1]], id_of[t[2]]});
+		}
+	}
+	return all;
+}
+
+std::set<std::pair<int, int>> directed_edges(const TriMesh& m)
+{
+	std::set<std::pair<int, int>> directed;
+	for (const Tri& t : m.F)
+		for (int k = 0; k < 3; ++k) directed.insert({t[k], t[(k + 1) % 3]});
+	return directed;
+}
+
+// Rims: a later cut on one side split a rim edge there; the other side's edge (b -> a, unmatched)
+// gets the rim vertices lying on it, and its face is fanned out.
+void close_rims(TriMesh& all, double eps)
+{
+	std::set<std::pair<int, int>> directed = directed_edges(all);
+	std::set<int>                 rim;
+	for (const auto& [a, b] : directed)
+		if (!directed.count({b, a})) rim.insert(a), rim.insert(b);
+	std::vector<int> rim_v(rim.begin(), rim.end());
+	for (int pass = 0; pass < 8 && !rim_v.empty(); ++pass) {
+		bool             changed = false;
+		std::vector<Tri> faces;
+		for (const Tri& t : all.F) {
+			int k = 0, w = -1;
+			for (; k < 3 && w < 0; ++k) {
+				const int a = t[k], b = t[(k + 1) % 3];
+				if (directed.count({b, a})) continue;
+				const Vec3 ab   = all.V[b] - all.V[a];
+				double     best = 2;
+				for (int v : rim_v) {
+					if (v == a || v == b) continue;
+					const double s = (all.V[v] - all.V[a]).dot(ab) / ab.squaredNorm();
+					if (s <= 0 || s >= 1 || (all.V[a] + s * ab - all.V[v]).norm() > eps) continue;
+					if (s < best) best = s, w = v;   // the nearest to a first; later passes do the rest
+				}
+			}
+			if (w < 0) {
+				faces.push_back(t);
+				continue;
+			}
+			--k;   // edge k (a -> b) gets w: (a, w, c) and (w, b, c)
+			const int a = t[k], b = t[(k + 1) % 3], c = t[(k + 2) % 3];
+			faces.push_back({a, w, c});
+			faces.push_back({w, b, c});
+			changed = true;
+		}
+		all.F.swap(faces);
+		if (!changed) break;
+		directed = directed_edges(all);
+	}
+}
+
+// The vertices the faces use, renumbered in order of first use.
+TriMesh compacted(const TriMesh& all)
+{
+	TriMesh          out;
+	std::vector<int> id_new(all.V.size(), -1);
+	for (const Tri& t : all.F) {
+		Tri u;
+		for (int k = 0; k < 3; ++k) {
+			int& i = id_new[t[k]];
+			if (i < 0) {
+				i = (int) out.V.size();
+				out.V.push_back(all.V[t[k]]);
+			}
+			u[k] = i;
+		}
+		out.F.push_back(u);
+	}
+	return out;
+}
+
+} // namespace
+
+TriMesh rebuild_solid(const Decomposition& D, int id)
+{
+	std::vector<int>   leaves;
+	std::vector<Plane> cuts;
+	subtree(D, id, leaves, cuts);
+	if (leaves.size() == 1) return D.nodes[leaves[0]].mesh;
+	std::vector<Vec3> pts;
+	for (int l : leaves)
+		for (const Vec3& p : D.nodes[l].mesh.V) pts.push_back(p);
+	const double eps = 1e-9 * extent(pts);
+	TriMesh      all = weld_without_caps(D, leaves, cuts, eps);
+	close_rims(all, eps);
+	return compacted(all);
+}
+
+} // namespace acd
