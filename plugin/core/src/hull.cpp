@@ -253,9 +253,13 @@ int ConvexHull::facet_facing(int t, const Vec3& n) const
 
 TriMesh ConvexHull::mesh() const
 {
-	// In a canonical order (vertices by coordinates, triangles by their lowest corner first): CGAL's
-	// hull keys its border edges by handle addresses, so its own order differs from run to run, and
-	// the same input must give the same layer, file and simplified hull.
+	return TriMesh{points, triangles};
+}
+
+TriMesh ConvexHull::canonical_mesh() const
+{
+	// CGAL's hull keys its border edges by handle addresses, so its own order can differ from run to
+	// run (with threads, allocation differs): a layer, a file or a simplified hull must not.
 	std::vector<int> order(points.size());
 	std::iota(order.begin(), order.end(), 0);
 	std::sort(order.begin(), order.end(), [&](int a, int b) {
@@ -295,7 +299,7 @@ TriMesh simplify_hull(const TriMesh& hull, int max_vertices)
 		                                                   : std::min(d[i], (P[i] - P[far]).squaredNorm());
 		d[far] = -1;
 	}
-	return ConvexHull(keep).mesh();
+	return ConvexHull(keep).canonical_mesh();
 }
 
 } // namespace acd

@@ -52,7 +52,7 @@ json node_json(const Node& n, int id, bool geometry)
 	if (n.concavity > 0) o["notch"] = {n.notch.x(), n.notch.y(), n.notch.z()};
 	if (n.has_plane) o["plane"] = {{"normal", {n.plane.n.x(), n.plane.n.y(), n.plane.n.z()}}, {"offset", n.plane.d}};
 	if (geometry && !n.mesh.F.empty()) {
-		o["hull"] = mesh_json(ConvexHull(n.mesh.V).mesh());
+		o["hull"] = mesh_json(ConvexHull(n.mesh.V).canonical_mesh());
 		if (n.leaf()) o["mesh"] = mesh_json(n.mesh);
 	}
 	return o;

@@ -37,8 +37,11 @@ public:
 	int facet_facing(int t, const Vec3& n) const;
 	// Distance from p to one facet (a planar convex polygon).
 	double distance_to_facet(const Vec3& p, int facet) const;
-	// Hull as a mesh (vertices = hull vertices).
+	// Hull as a mesh (vertices = hull vertices), in CGAL's order.
 	TriMesh mesh() const;
+	// The same in an order that depends on the points alone (sorted vertices and triangles): for
+	// output, which must be the same in every session.
+	TriMesh canonical_mesh() const;
 
 private:
 	void index_facets(const std::vector<int>& group);   // group: per triangle, its coplanar group
