@@ -7,7 +7,7 @@ corners lie within R of that centre holds no point farther than d + R. Triangles
 until that bound settles the question: the result is a lower bound (a point attains it) and an upper
 bound no more than `slack` above it, or above `limit` when the hull is shown to be within it."""
 import numpy as np
-from scipy.spatial import ConvexHull
+from scipy.spatial import ConvexHull, QhullError
 
 
 def point_surface_distance(P, V, F):
@@ -95,7 +95,10 @@ def hull_reach(V, F, slack, limit=None, max_triangles=2_000_000):
     V = np.asarray(V, float)
     F = np.asarray(F, np.int64)
     pts = V[np.unique(F)]
-    hull = ConvexHull(pts)
+    try:
+        hull = ConvexHull(pts)
+    except QhullError:   # a nearly flat part Qhull cannot settle exactly: joggle (about 1e-11 of its size)
+        hull = ConvexHull(pts, qhull_options="QJ")
     tris = pts[hull.simplices[~_covered(hull, V, F)]]   # (m, 3, 3): only where the hull leaves the surface
     A, B, C = V[F[:, 0]], V[F[:, 1]], V[F[:, 2]]
     lower, upper = 0.0, 0.0
