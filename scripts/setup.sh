@@ -6,7 +6,7 @@ here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
 source "$here/env.sh"
 
 APT_PKGS=(build-essential cmake ninja-build pkg-config xz-utils dpkg-dev
-	qtbase5-dev libqt5opengl5-dev libglew-dev libeigen3-dev libgmp-dev libmpfr-dev libboost-dev libtbb-dev nlohmann-json3-dev)
+	qtbase5-dev libqt5opengl5-dev libglew-dev libeigen3-dev libgmp-dev libmpfr-dev libboost-dev libtbb-dev nlohmann-json3-dev doctest-dev)
 missing=()
 for p in "${APT_PKGS[@]}"; do
 	dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

@@ -1,6 +1,6 @@
 #include "acd/concavity.h"
 #include "shapes.h"
-#include "testing.h"
+#include "check.h"
 
 using namespace acd;
 
@@ -12,7 +12,7 @@ static ConcavityReport measure(const TriMesh& in)
 	return measure_concavity(s.mesh, t, h);
 }
 
-ACD_TEST(convex_shapes_have_no_notch)
+TEST_CASE("convex shapes have no notch")
 {
 	for (const TriMesh& m : {shapes::box({0, 0, 0}, {1, 2, 3}), shapes::sphere(3, 1.0)}) {
 		ConcavityReport r = measure(m);
@@ -22,7 +22,7 @@ ACD_TEST(convex_shapes_have_no_notch)
 	}
 }
 
-ACD_TEST(l_shape_concavity_is_distance_to_its_bridge)
+TEST_CASE("l shape concavity is distance to its bridge")
 {
 	ConcavityReport r = measure(shapes::extrude(shapes::l_shape(), 0, 0.5));
 	// The reflex corner (1,1) lies 1/sqrt(2) from the bridge x + y = 3.
@@ -32,7 +32,7 @@ ACD_TEST(l_shape_concavity_is_distance_to_its_bridge)
 	CHECK(r.bridges == 3);
 }
 
-ACD_TEST(u_shape_concavity_is_its_depth)
+TEST_CASE("u shape concavity is its depth")
 {
 	// The U's notch (1,1) and (2,1) lie 1 below the bridge y = 2.
 	ConcavityReport r = measure(shapes::extrude(shapes::u_shape(), 0, 1));
@@ -40,7 +40,7 @@ ACD_TEST(u_shape_concavity_is_its_depth)
 	CHECK(r.notches == 2);
 }
 
-ACD_TEST(bad_input_is_refused_with_a_reason)
+TEST_CASE("bad input is refused with a reason")
 {
 	TriMesh open = shapes::box({0, 0, 0}, {1, 1, 1});
 	open.F.pop_back();
@@ -66,7 +66,7 @@ ACD_TEST(bad_input_is_refused_with_a_reason)
 // Cut outlines put nearly collinear points on hulls; the sliver triangles between them have
 // rounding-noise normals. Every facet plane must still bound the hull (a bogus plane made
 // points deep inside look outside, and bridges far away look near).
-ACD_TEST(hull_facets_bound_the_hull_despite_slivers)
+TEST_CASE("hull facets bound the hull despite slivers")
 {
 	std::vector<acd::Vec3> pts;
 	for (double z : {0.0, 1.0}) {

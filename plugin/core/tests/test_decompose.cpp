@@ -1,6 +1,6 @@
 #include "acd/decompose.h"
 #include "shapes.h"
-#include "testing.h"
+#include "check.h"
 
 using namespace acd;
 
@@ -23,13 +23,13 @@ static void check_partition(const TriMesh& input, const Decomposition& d)
 	CHECK_NEAR(vol / v0, 1.0, 1e-9);
 }
 
-ACD_TEST(convex_gives_one_part)
+TEST_CASE("convex gives one part")
 {
 	Decomposition d = run(shapes::sphere(2, 1.0), 0.01);
 	CHECK(d.leaves().size() == 1);
 }
 
-ACD_TEST(l_u_plus_known_counts)
+TEST_CASE("l u plus known counts")
 {
 	for (auto sel : {CutPlaneSelection::Bisector, CutPlaneSelection::Best, CutPlaneSelection::MinSection}) {
 		TriMesh L = shapes::extrude(shapes::l_shape(), 0, 0.5);
@@ -42,13 +42,13 @@ ACD_TEST(l_u_plus_known_counts)
 		check_partition(U, d);
 		TriMesh P = shapes::extrude(shapes::plus_shape(), 0, 1);
 		d         = run(P, 0.01, sel);
-		CHECK(d.leaves().size() >= 4 && d.leaves().size() <= 5);
+		CHECK((d.leaves().size() >= 4 && d.leaves().size() <= 5));
 		check_partition(P, d);
 		for (int i : d.leaves()) CHECK(d.nodes[i].concavity <= 0.01);
 	}
 }
 
-ACD_TEST(torus_needs_at_least_three_parts)
+TEST_CASE("torus needs at least three parts")
 {
 	TriMesh T = shapes::torus(2, 0.5, 48, 16);
 	auto    d = run(T, 0.1);
@@ -56,14 +56,14 @@ ACD_TEST(torus_needs_at_least_three_parts)
 	check_partition(T, d);
 }
 
-ACD_TEST(min_section_cuts_the_neck)
+TEST_CASE("min section cuts the neck")
 {
 	// A spindle pinched by a lopsided V at z = 1.2: the bisector of the notch's faces leans with the V;
 	// the narrowest cross-section through the notch is the horizontal disc.
 	const TriMesh spindle = shapes::lathe({{0, 0}, {1, 0}, {1, 0.4}, {0.4, 1.2}, {1, 2.8}, {1, 3.2}, {0, 3.2}}, 48);
 	const auto    neck    = run(spindle, 0.05, CutPlaneSelection::MinSection);
 	const auto    bis     = run(spindle, 0.05, CutPlaneSelection::Bisector);
-	CHECK(neck.nodes[0].has_plane && bis.nodes[0].has_plane);
+	CHECK((neck.nodes[0].has_plane && bis.nodes[0].has_plane));
 	CHECK(std::abs(neck.nodes[0].plane.n.z()) > 0.999);
 	CHECK(std::abs(bis.nodes[0].plane.n.z()) < 0.99);   // the test tells the two apart
 	check_partition(spindle, neck);

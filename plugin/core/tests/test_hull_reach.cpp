@@ -2,7 +2,7 @@
 #include "acd/decompose.h"
 #include "acd/hull_reach.h"
 #include "shapes.h"
-#include "testing.h"
+#include "check.h"
 
 using namespace acd;
 
@@ -14,7 +14,7 @@ static ConcavityReport measure(const TriMesh& in, double tau = 0)
 	return measure_concavity(s.mesh, t, h, tau);
 }
 
-ACD_TEST(reach_of_an_l_prism_is_half_its_arm)
+TEST_CASE("reach of an l prism is half its arm")
 {
 	// The bridge x + y = 3 stands 0.5 off the L's walls at its middle, (1.5, 1.5, z).
 	const TriMesh     m = shapes::extrude(shapes::l_shape(), 0, 0.5);
@@ -31,7 +31,7 @@ ACD_TEST(reach_of_an_l_prism_is_half_its_arm)
 	CHECK(!c.reach_cut);
 }
 
-ACD_TEST(a_low_poly_ring_is_as_concave_as_its_hole_is_wide)
+TEST_CASE("a low poly ring is as concave as its hole is wide")
 {
 	// A ring of square section (torus R 2, r 0.5, 4 segments across): its notches lie only 0.5 below
 	// the hull's lid, but the lid spans the hole, 1.55 from the surface at the axis.
@@ -40,10 +40,10 @@ ACD_TEST(a_low_poly_ring_is_as_concave_as_its_hole_is_wide)
 	CHECK_NEAR(c.hull_reach, expect, 0.01);   // refined to 1e-3 of the size (5) and 0.2%
 	CHECK(c.max_concavity >= c.hull_reach);
 	CHECK(c.reach_cut);
-	CHECK(c.max_vertex >= 0 && c.max_bridge >= 0);
+	CHECK((c.max_vertex >= 0 && c.max_bridge >= 0));
 }
 
-ACD_TEST(every_leaf_of_a_ring_is_certified)
+TEST_CASE("every leaf of a ring is certified")
 {
 	Solid            s = make_solid(shapes::torus(2, 0.5, 16, 4));
 	DecomposeOptions o;

@@ -1,12 +1,12 @@
 #include "acd/tree_io.h"
 #include "shapes.h"
-#include "testing.h"
+#include "check.h"
 
 #include <nlohmann/json.hpp>
 
 using namespace acd;
 
-ACD_TEST(a_tree_survives_a_round_trip_through_json)
+TEST_CASE("a tree survives a round trip through json")
 {
 	DecomposeOptions o;
 	o.tau                  = 0.01;
@@ -15,20 +15,20 @@ ACD_TEST(a_tree_survives_a_round_trip_through_json)
 	CHECK(nlohmann::json::parse(js).at("schema").get<int>() == kTreeSchema);
 	std::vector<TriMesh> hulls;
 	const Decomposition  R = tree_from_json(js, &hulls);
-	CHECK(R.nodes.size() == D.nodes.size() && hulls.size() == D.nodes.size());
+	CHECK((R.nodes.size() == D.nodes.size() && hulls.size() == D.nodes.size()));
 	CHECK(R.tau == D.tau);
 	for (size_t i = 0; i < D.nodes.size(); ++i) {
 		const Node &a = D.nodes[i], &b = R.nodes[i];
-		CHECK(a.path == b.path && a.parent == b.parent && a.child[0] == b.child[0] && a.child[1] == b.child[1]);
-		CHECK(a.concavity == b.concavity && a.volume == b.volume && a.has_plane == b.has_plane);
-		if (a.has_plane) CHECK(a.plane.n == b.plane.n && a.plane.d == b.plane.d);   // doubles written exactly
-		if (a.leaf()) CHECK(a.mesh.V == b.mesh.V && a.mesh.F == b.mesh.F);
+		CHECK((a.path == b.path && a.parent == b.parent && a.child[0] == b.child[0] && a.child[1] == b.child[1]));
+		CHECK((a.concavity == b.concavity && a.volume == b.volume && a.has_plane == b.has_plane));
+		if (a.has_plane) CHECK((a.plane.n == b.plane.n && a.plane.d == b.plane.d));   // doubles written exactly
+		if (a.leaf()) CHECK((a.mesh.V == b.mesh.V && a.mesh.F == b.mesh.F));
 		CHECK(!hulls[i].F.empty());
 	}
 	CHECK(R.leaves() == D.leaves());
 }
 
-ACD_TEST(a_broken_tree_file_is_refused_with_the_reason)
+TEST_CASE("a broken tree file is refused with the reason")
 {
 	auto refused = [](const std::string& text, const std::string& why) {
 		try {

@@ -1,13 +1,13 @@
 #include "acd/preprocess.h"
 #include "acd/wrap_solid.h"
 #include "shapes.h"
-#include "testing.h"
+#include "check.h"
 
 #include <cmath>
 
 using namespace acd;
 
-ACD_TEST(winding_number_is_one_inside_zero_outside_and_signed_by_orientation)
+TEST_CASE("winding number is one inside zero outside and signed by orientation")
 {
 	const TriMesh             s = shapes::sphere(3, 1.0);
 	const std::vector<Vec3>   p = {Vec3(0, 0, 0), Vec3(0.5, -0.3, 0.2), Vec3(3, 0, 0), Vec3(0, 1.5, 0)};
@@ -19,7 +19,7 @@ ACD_TEST(winding_number_is_one_inside_zero_outside_and_signed_by_orientation)
 	CHECK_NEAR(winding_numbers(shapes::inverted(s), p)[0], -1.0, 1e-9);
 }
 
-ACD_TEST(a_valid_solid_is_returned_as_given)
+TEST_CASE("a valid solid is returned as given")
 {
 	const TriMesh         b = shapes::box(Vec3(0, 0, 0), Vec3(2, 1, 1));
 	const WrapSolidResult r = wrap_solid(b, 0.05, 0.005, 0.4);
@@ -28,7 +28,7 @@ ACD_TEST(a_valid_solid_is_returned_as_given)
 	CHECK(r.mesh.F.size() == b.F.size());
 }
 
-ACD_TEST(a_sphere_with_a_small_hole_is_wrapped_solid_not_as_a_skin)
+TEST_CASE("a sphere with a small hole is wrapped solid not as a skin")
 {
 	// Faces around the north pole removed: a hole about 0.28 across in a sphere of diameter 2. A wrap
 	// with alpha 0.05 slips through it and hugs both sides of the surface; a coarser wrap closes it.
@@ -51,7 +51,7 @@ ACD_TEST(a_sphere_with_a_small_hole_is_wrapped_solid_not_as_a_skin)
 	CHECK(make_solid(r.mesh).mesh.F.size() == r.mesh.F.size());
 }
 
-ACD_TEST(an_open_shell_no_wrap_fills_keeps_its_skin)
+TEST_CASE("an open shell no wrap fills keeps its skin")
 {
 	// A hemisphere encloses nothing: no alpha recovers an interior, and the first wrap (the skin, a
 	// thin closed sheet about the surface) is kept rather than a coarse blob.
@@ -65,7 +65,7 @@ ACD_TEST(an_open_shell_no_wrap_fills_keeps_its_skin)
 	CHECK(signed_volume(r.mesh) < 0.1 * (2.0 / 3.0 * M_PI));
 }
 
-ACD_TEST(a_triangle_soup_of_a_closed_box_is_welded_not_wrapped)
+TEST_CASE("a triangle soup of a closed box is welded not wrapped")
 {
 	// As an STL stores it: every face with its own three corners, one corner off by 1e-9.
 	const TriMesh b = shapes::box(Vec3(0, 0, 0), Vec3(2, 1, 1));
@@ -82,5 +82,5 @@ ACD_TEST(a_triangle_soup_of_a_closed_box_is_welded_not_wrapped)
 	CHECK(r.mesh.F.size() == b.F.size());
 	CHECK_NEAR(signed_volume(r.mesh), 2.0, 1e-8);
 	int merged = -1;
-	CHECK(weld(b, 1e-6, &merged).F.size() == b.F.size() && merged == 0);
+	CHECK((weld(b, 1e-6, &merged).F.size() == b.F.size() && merged == 0));
 }

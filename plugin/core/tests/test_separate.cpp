@@ -1,0 +1,78 @@
+#include "acd/separate.h"
+#include "check.h"
+#include "shapes.h"
+
+using namespace acd;
+
+namespace {
+
+Plane plane(Vec3 n, double d)
+{
+	Plane p;
+	p.n = n.normalized();
+	p.d = d;
+	return p;
+}
+
+// Exactly two closed solids, each on its side of the plane, holding the input's volume together.
+void check_split(const TriMesh& m, const Plane& pl, const Vec3& notch, double expect_first)
+{
+	SplitOutcome out;
+	REQUIRE(separate(m, pl, notch, out));
+	double total = 0;
+	for (int s = 0; s < 2; ++s) {
+		const Solid part = make_solid(out.parts[s]);   // closed, manifold and outward, or it throws
+		CHECK(part.shells - part.cavities == 1);
+		total += part.volume;
+		for (const Vec3& v : out.parts[s].V) CHECK((s == 0 ? out.plane.eval(v) <= 1e-9 : out.plane.eval(v) >= -1e-9));
+	}
+	CHECK_NEAR(total, signed_volume(m), 1e-9 * std::abs(signed_volume(m)));
+	// (a plane through vertices is nudged about 1e-7 of the size off them)
+	if (expect_first > 0) CHECK_NEAR(signed_volume(out.parts[0]), expect_first, 1e-6);
+	CHECK(out.cap_area > 0);
+}
+
+} // namespace
+
+TEST_CASE("cut cases give exactly two closed parts")
+{
+	const TriMesh box = shapes::box(Vec3(0, 0, 0), Vec3(2, 1, 1));
+	SUBCASE("a box across its middle") { check_split(box, plane(Vec3(1, 0, 0), 1), Vec3(1, 0, 0), 1.0); }
+	SUBCASE("a box obliquely") { check_split(box, plane(Vec3(1, 0.3, 0.2), 1.1), Vec3(1, 0.5, 0.5), 0); }
+	SUBCASE("an L prism through its notch")
+	{
+		check_split(shapes::extrude(shapes::l_shape(), 0, 1), plane(Vec3(1, 0, 0), 1), Vec3(1, 1, 0.5), 2.0);
+	}
+	SUBCASE("a box with a cavity, through the cavity")
+	{
+		const TriMesh hollow = shapes::merge(box, shapes::inverted(shapes::box(Vec3(0.5, 0.25, 0.25), Vec3(1.5, 0.75, 0.75))));
+		check_split(hollow, plane(Vec3(1, 0, 0), 1), Vec3(1, 0.5, 0.5), 1.0 - 0.125);
+	}
+	SUBCASE("a ring through its axis: both cross-sections are cut")
+	{
+		const TriMesh ring = shapes::torus(2, 0.5, 48, 16);
+		SplitOutcome  out;
+		REQUIRE(separate(ring, plane(Vec3(1, 0, 0), 1e-3), Vec3(1e-3, 2, 0), out));
+		CHECK(out.regions_cut == 2);
+		check_split(ring, plane(Vec3(1, 0, 0), 1e-3), Vec3(1e-3, 2, 0), 0);
+	}
+}
+
+TEST_CASE("only the cross-section at the notch is cut")
+{
+	// A U prism cut across both arms (y = 1.5): the arm nearer the notch falls off (its tip, 1 x 0.5 x 1),
+	// the other arm is left whole.
+	const TriMesh U = shapes::extrude(shapes::u_shape(), 0, 1);
+	SplitOutcome  out;
+	REQUIRE(separate(U, plane(Vec3(0, 1, 0), 1.5), Vec3(1, 1.5, 0.5), out));
+	CHECK(out.regions_cut == 1);
+	CHECK_NEAR(signed_volume(out.parts[1]), 0.5, 1e-9);
+	CHECK_NEAR(signed_volume(out.parts[0]) + signed_volume(out.parts[1]), signed_volume(U), 1e-9);
+	for (const Vec3& v : out.parts[1].V) CHECK(v.x() <= 1 + 1e-9);
+}
+
+TEST_CASE("a plane that misses the solid does not split it")
+{
+	SplitOutcome out;
+	CHECK_FALSE(separate(shapes::box(Vec3(0, 0, 0), Vec3(1, 1, 1)), plane(Vec3(1, 0, 0), 5), Vec3(5, 0, 0), out));
+}
