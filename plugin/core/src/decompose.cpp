@@ -291,7 +291,8 @@ struct Cut
 class Driver
 {
 public:
-	explicit Driver(const DecomposeOptions& opt) : opt(opt), keep(opt.hole_handling == HoleHandling::KeepCavities), rec(D.nodes, limits_of(opt))
+	explicit Driver(const DecomposeOptions& opt)
+	    : opt(opt), keep(opt.hole_handling == HoleHandling::KeepCavities), rec(D.nodes, limits_from(opt, keep, kMaxDepth))
 	{
 		D.tau = opt.tau;
 	}
@@ -327,19 +328,6 @@ public:
 	void forget(int id) { measured[id].reset(); }
 
 private:
-	static RecursionLimits limits_of(const DecomposeOptions& opt)
-	{
-		RecursionLimits l;
-		l.tau                = opt.tau;
-		l.keep_holes         = opt.hole_handling == HoleHandling::KeepCavities;
-		l.hole_order         = opt.hole_order;
-		l.max_parts          = opt.max_parts;
-		l.time_limit_seconds = opt.time_limit_seconds;
-		l.max_depth          = kMaxDepth;
-		l.progress           = opt.progress;
-		return l;
-	}
-
 	const DecomposeOptions&                opt;
 	const bool                             keep;
 	Decomposition                          D;

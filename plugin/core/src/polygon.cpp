@@ -615,7 +615,7 @@ class Driver2
 {
 public:
 	explicit Driver2(const PolygonOptions& opt)
-	    : opt(opt), keep(opt.hole_handling == HoleCut::KeepHoles), rec(D.nodes, limits_of(opt))
+	    : opt(opt), keep(opt.hole_handling == HoleCut::KeepHoles), rec(D.nodes, limits_from(opt, keep, kMaxDepth))
 	{
 		D.tau = opt.tau;
 	}
@@ -646,19 +646,6 @@ public:
 	void forget(int) {}
 
 private:
-	static RecursionLimits limits_of(const PolygonOptions& opt)
-	{
-		RecursionLimits l;
-		l.tau                = opt.tau;
-		l.keep_holes         = opt.hole_handling == HoleCut::KeepHoles;
-		l.hole_order         = opt.hole_order;
-		l.max_parts          = opt.max_parts;
-		l.time_limit_seconds = opt.time_limit_seconds;
-		l.max_depth          = kMaxDepth;
-		l.progress           = opt.progress;
-		return l;
-	}
-
 	const PolygonOptions&   opt;
 	const bool              keep;
 	Decomposition2          D;

@@ -27,6 +27,20 @@ struct RecursionLimits
 	std::function<bool(int, const char*)> progress;
 };
 
+// The limits from a dimension's options (tau, hole_order, max_parts, time_limit_seconds, progress).
+template <class Options> RecursionLimits limits_from(const Options& o, bool keep_holes, size_t max_depth)
+{
+	RecursionLimits l;
+	l.tau                = o.tau;
+	l.keep_holes         = keep_holes;
+	l.hole_order         = o.hole_order;
+	l.max_parts          = o.max_parts;
+	l.time_limit_seconds = o.time_limit_seconds;
+	l.max_depth          = max_depth;
+	l.progress           = o.progress;
+	return l;
+}
+
 // `NodeT` has path, concavity and uncut; holes_in(node) counts its holes (found by argument lookup).
 // `Cutter` has cut(id), which returns the parts it added (1 for a split, 0 otherwise) and may push
 // nodes back, and forget(id), called for a node given up on.
