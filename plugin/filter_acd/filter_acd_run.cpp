@@ -91,6 +91,33 @@ MeshModel* add_layer(MeshDocument& md, const QString& name, const acd::TriMesh& 
 
 QString layer_name(const char* prefix, const std::string& path) { return QString(prefix) + QString::fromStdString(path); }
 
+// The tree's JSON (made only when a file is asked for) into `path`; nothing when it is empty.
+template <class Json> void write_tree_file(const QString& path, Json json)
+{
+	if (path.isEmpty()) return;
+	QFile f(path);
+	if (!f.open(QIODevice::WriteOnly | QIODevice::Truncate)) throw MLException("Cannot write the tree file " + path);
+	f.write(QByteArray::fromStdString(json()));
+}
+
+// A 2D piece lifted into its plane: triangles (none when its loops touch: `whole` false) and the
+// outline's edges, numbered as triangulate() numbers the loops' points.
+acd::TriMesh piece_mesh(const acd::Polygon2& piece, const acd::PlanarLoops& pl, std::vector<std::array<int, 2>>& outline,
+                        bool& whole)
+{
+	std::vector<acd::Vec2> V2;
+	acd::TriMesh           t;
+	whole = acd::triangulate(piece, V2, t.F);
+	for (const acd::Vec2& q : V2) t.V.push_back(pl.lift(q));
+	int base = 0;
+	for (int l = 0; l <= (int) piece.holes.size(); ++l) {
+		const int n = (int) (l == 0 ? piece.outer.size() : piece.holes[l - 1].size());
+		for (int i = 0; i < n; ++i) outline.push_back({base + i, base + (i + 1) % n});
+		base += n;
+	}
+	return t;
+}
+
 } // namespace
 
 std::map<std::string, QVariant> FilterACD::notchConcavity(MeshModel& mm, vcg::CallBackPos* cb)
@@ -227,13 +254,7 @@ FilterACD::decompose(const RichParameterList& par, MeshDocument& md, vcg::CallBa
 		}
 		++idx;
 	}
-	const QString tree_file = par.getString("tree_file");
-	if (!tree_file.isEmpty()) {
-		QFile f(tree_file);
-		if (!f.open(QIODevice::WriteOnly | QIODevice::Truncate))
-			throw MLException("Cannot write the tree file " + tree_file);
-		f.write(QByteArray::fromStdString(acd::tree_to_json(d, true)));
-	}
+	write_tree_file(par.getString("tree_file"), [&] { return acd::tree_to_json(d, true); });
 	const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 	const int    uncut = (int) std::count_if(d.nodes.begin(), d.nodes.end(), [](const acd::Node& n) { return n.uncut; });
 	log("Approximate convex decomposition: %d parts, tau %g (model units), max part concavity %g, farthest "
@@ -451,33 +472,19 @@ FilterACD::decomposePolygon(const RichParameterList& par, MeshDocument& md, vcg:
 		root_conc = std::max(root_conc, d.nodes[0].concavity);
 		max_conc  = std::max(max_conc, d.max_leaf_concavity());
 		for (int li : d.leaves()) {
-			const acd::Polygon2& piece = d.nodes[li].polygon;
-			std::vector<acd::Vec2> V2;
-			acd::TriMesh           t;
-			if (!acd::triangulate(piece, V2, t.F))
+			std::vector<std::array<int, 2>> outline;
+			bool                            whole = true;
+			const acd::TriMesh t = piece_mesh(d.nodes[li].polygon, pl, outline, whole);
+			if (!whole)
 				log("Warning: piece %s could not be triangulated (its loops touch); only its outline is added.",
 				    d.nodes[li].path.c_str());
-			for (const acd::Vec2& q : V2) t.V.push_back(pl.lift(q));
-			// The outline: the loops' edges, in the order triangulate() numbered their points.
-			std::vector<std::array<int, 2>> outline;
-			int                             base = 0;
-			for (int l = 0; l <= (int) piece.holes.size(); ++l) {
-				const int n = (int) (l == 0 ? piece.outer.size() : piece.holes[l - 1].size());
-				for (int i = 0; i < n; ++i) outline.push_back({base + i, base + (i + 1) % n});
-				base += n;
-			}
 			const QString name = polys.size() > 1 ? QString("acd_p%1_%2").arg(k).arg(QString::fromStdString(d.nodes[li].path))
 			                                       : QString("acd_%1").arg(QString::fromStdString(d.nodes[li].path));
 			add_layer(md, name, t, &input, pieces, outline);
 			++pieces;
 		}
 	}
-	const QString tree_file = par.getString("tree_file");
-	if (!tree_file.isEmpty()) {
-		QFile f(tree_file);
-		if (!f.open(QIODevice::WriteOnly | QIODevice::Truncate)) throw MLException("Cannot write the tree file " + tree_file);
-		f.write(QByteArray::fromStdString(acd::polygon_trees_to_json(trees)));
-	}
+	write_tree_file(par.getString("tree_file"), [&] { return acd::polygon_trees_to_json(trees); });
 	const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 	log("Polygon convex decomposition: %d polygons, %d holes, %d notches; %d pieces, tau %g (model units), max "
 	    "piece concavity %g, %.3f s%s",
