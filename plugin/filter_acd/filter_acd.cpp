@@ -7,6 +7,7 @@
 // nothing else).
 
 #include "filter_acd.h"
+#include "messages.h"
 #include "parameters.h"
 
 #include <acd/decompose.h>
@@ -30,9 +31,7 @@ template <class Fn> auto guarded(Fn fn) -> decltype(fn())
 		throw MLException("Out of memory during the convex decomposition.");
 	}
 	catch (const acd::Error& e) {
-		if (e.kind == acd::Error::Internal)
-			throw MLException(QString("Internal error in the convex decomposition: ") + e.what());
-		throw MLException(QString::fromStdString(e.what()));
+		throw MLException(acdml::message(e));
 	}
 	catch (const std::exception& e) {
 		throw MLException(QString("Internal error in the convex decomposition: ") + e.what());

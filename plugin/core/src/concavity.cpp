@@ -107,8 +107,10 @@ struct Measure
 	{
 		for (const auto& nb : topo.neighbour)
 			if (nb[0] < 0 || nb[1] < 0 || nb[2] < 0)
-				throw Error(Error::InvalidInput, "A cut made a part that is not closed: the mesh intersects itself "
-				                                 "there. Use preprocessing = alpha_wrap (or MeshLab's 'Alpha Wrap').");
+				throw Error(Error::InvalidInput,
+				            "A cut made a part that is not closed: the mesh intersects itself there (preprocessing "
+				            "alpha_wrap repairs it).",
+				            Error::OpenPart);
 	}
 
 	bool on_hull(int v) const { return vdist[v] >= 0 && vdist[v] <= eps; }

@@ -28,7 +28,10 @@ struct EdgeHash
 	}
 };
 
-[[noreturn]] void invalid(const std::string& msg) { throw Error(Error::InvalidInput, msg); }
+[[noreturn]] void invalid(const std::string& msg, Error::Code code = Error::Unspecified, long count = 0)
+{
+	throw Error(Error::InvalidInput, msg, code, count);
+}
 
 int find_root(std::vector<int>& p, int x)
 {
@@ -243,8 +246,8 @@ std::vector<int> compact_vertices(const TriMesh& in, Solid& s)
 	if (in.V.empty()) invalid("The mesh is empty: it has no vertices.");
 	if (in.F.empty())
 		invalid("The mesh is a point cloud (" + std::to_string(in.V.size()) +
-		        " vertices, no faces). Reconstruct a closed surface first, e.g. with "
-		        "'Surface Reconstruction: Screened Poisson' or 'Alpha Wrap'.");
+		            " vertices, no faces); a closed surface is needed (alpha wrapping makes one).",
+		        Error::PointCloud, (long) in.V.size());
 	for (const Vec3& p : in.V)
 		if (!p.allFinite()) invalid("The mesh has vertices with NaN or infinite coordinates.");
 	std::vector<int> remap(in.V.size(), -1);
@@ -288,11 +291,9 @@ void checked_faces(const TriMesh& in, const std::vector<int>& remap, Solid& s)
 		s.mesh.F.push_back(r);
 	}
 	if (repeated > 0)
-		invalid(std::to_string(repeated) + " faces repeat a vertex. Run 'Remove Duplicate Faces' and "
-		        "'Remove Zero Area Faces' (meshing_remove_null_faces) first.");
+		invalid(std::to_string(repeated) + " faces repeat a vertex.", Error::RepeatedVertex, repeated);
 	if (degenerate > 0)
-		invalid(std::to_string(degenerate) + " faces have zero area. Run 'Remove Zero Area Faces' "
-		        "(meshing_remove_null_faces) first.");
+		invalid(std::to_string(degenerate) + " faces have zero area.", Error::ZeroArea, degenerate);
 	// Duplicated faces (same three vertices, either orientation) would otherwise be reported as
 	// non-manifold or misoriented edges, which sends the user to the wrong repair.
 	std::vector<Tri> keys(s.mesh.F);
@@ -300,8 +301,7 @@ void checked_faces(const TriMesh& in, const std::vector<int>& remap, Solid& s)
 	std::sort(keys.begin(), keys.end());
 	const long dup = (long) (keys.end() - std::unique(keys.begin(), keys.end()));
 	if (dup > 0)
-		invalid(std::to_string(dup) + " faces duplicate other faces. Run 'Remove Duplicate Faces' "
-		        "(meshing_remove_duplicate_faces) first.");
+		invalid(std::to_string(dup) + " faces duplicate other faces.", Error::DuplicateFaces, dup);
 }
 
 // Edge use: each undirected edge used by exactly two faces, once in each direction.
@@ -324,18 +324,17 @@ void check_edges(const TriMesh& m)
 	}
 	if (boundary > 0)
 		invalid("The mesh is open: it has " + std::to_string(boundary) +
-		        " boundary edges. The decomposition needs a closed (watertight) solid: set preprocessing to "
-		        "'auto' (welds or alpha-wraps it; CLI --preprocessing auto), or close the holes with 'Close "
-		        "Holes' (meshing_close_holes).");
+		            " boundary edges. The decomposition needs a closed (watertight) solid (preprocessing 'auto' "
+		            "welds or alpha-wraps it).",
+		        Error::OpenMesh, boundary);
 	if (nonmanifold > 0)
 		invalid("The mesh has " + std::to_string(nonmanifold) +
-		        " non-manifold edges (shared by more than two faces). Set preprocessing to 'auto' (CLI "
-		        "--preprocessing auto), or repair it with 'Repair non Manifold Edges' "
-		        "(meshing_repair_non_manifold_edges).");
+		            " non-manifold edges (shared by more than two faces); preprocessing 'auto' repairs it.",
+		        Error::NonManifoldEdges, nonmanifold);
 	if (misoriented > 0)
 		invalid("The mesh's faces are not consistently oriented (" + std::to_string(misoriented) +
-		        " edges are used twice in the same direction). Run 'Re-Orient all faces coherently' "
-		        "(meshing_re_orient_faces_coherently).");
+		            " edges are used twice in the same direction).",
+		        Error::Misoriented, misoriented);
 }
 
 // Split non-manifold vertices: walk each fan of corners around a vertex across its edges; a vertex

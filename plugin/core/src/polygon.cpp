@@ -462,12 +462,14 @@ PlanarLoops planar_loops(const std::vector<Vec3>& V, const std::vector<Tri>& F, 
 		link[e[0]].push_back(e[1]);
 		if (F.empty()) link[e[1]].push_back(e[0]);
 	}
-	for (const auto& [v, out] : link)
-		if (out.size() != (F.empty() ? 2u : 1u))
-			invalid(F.empty() ? "The edges do not form closed loops: a vertex has " + std::to_string(out.size()) +
-			                        " edges (each needs exactly 2)."
-			                  : "The mesh's boundary touches itself at a vertex (non-manifold boundary); "
-			                    "repair it with 'Repair non Manifold Vertices'.");
+	for (const auto& [v, out] : link) {
+		if (out.size() == (F.empty() ? 2u : 1u)) continue;
+		if (F.empty())
+			invalid("The edges do not form closed loops: a vertex has " + std::to_string(out.size()) +
+			        " edges (each needs exactly 2).");
+		throw Error(Error::InvalidInput, "The mesh's boundary touches itself at a vertex (non-manifold boundary).",
+		            Error::NonManifoldBoundary);
+	}
 	std::set<int>                 used;
 	std::vector<std::vector<int>> index_loops;
 	for (const auto& [start, out] : link) {

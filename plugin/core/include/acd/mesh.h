@@ -22,14 +22,32 @@ struct TriMesh
 	std::vector<Tri>  F;
 };
 
-// Every failure the core reports. `kind` lets hosts phrase the message (MeshLab turns all of them
-// into MLException); the message itself already says what is wrong and what to do.
+// Every failure the core reports. The message says what is wrong in the core's own terms; `code`
+// and `count` let a host name its own repair (MeshLab's filters, a CLI option) for the input
+// problems it can fix, `kind` how to phrase the rest.
 class Error : public std::runtime_error
 {
 public:
 	enum Kind { InvalidInput, InvalidOption, Cancelled, Internal };
-	Error(Kind k, const std::string& msg) : std::runtime_error(msg), kind(k) {}
+	enum Code {
+		Unspecified,
+		PointCloud,            // count: vertices (no faces)
+		RepeatedVertex,        // count: faces naming a vertex twice
+		ZeroArea,              // count: faces
+		DuplicateFaces,        // count: faces
+		OpenMesh,              // count: boundary edges
+		NonManifoldEdges,      // count: edges
+		Misoriented,           // count: edges used twice in one direction
+		OpenPart,              // a cut made an open part: the mesh crosses itself there
+		NonManifoldBoundary    // a planar mesh's boundary touches itself at a vertex
+	};
+	Error(Kind k, const std::string& msg, Code c = Unspecified, long n = 0)
+	    : std::runtime_error(msg), kind(k), code(c), count(n)
+	{
+	}
 	Kind kind;
+	Code code;
+	long count;
 };
 
 // A validated solid: compact, finite, closed, 2-manifold along edges, consistently and outward
@@ -49,7 +67,7 @@ struct Solid
 	double           volume = 0;
 };
 
-// Throws Error(InvalidInput) naming the first problem found and a MeshLab filter that repairs it.
+// Throws Error(InvalidInput) naming the first problem found (with its code and count).
 Solid make_solid(const TriMesh& input);
 
 double signed_volume(const TriMesh& m);
