@@ -73,6 +73,14 @@ def corpus(meshes):
     return sorted(p for p in meshes.rglob("*") if p.suffix.lower() in (".stl", ".obj", ".ply"))
 
 
+def mesh_name(p, meshes, files):
+    """A mesh's name in the tables: its path without the suffix, unless another file differs from it
+    by the suffix alone (a robot shipping one model as .obj and .stl): then with it."""
+    stem = p.with_suffix("")
+    twins = sum(1 for q in files if q.with_suffix("") == stem)
+    return p.relative_to(meshes).as_posix() if twins > 1 else stem.relative_to(meshes).as_posix()
+
+
 def robot_of(p, meshes):
     return p.relative_to(meshes).parts[0]
 
@@ -115,6 +123,9 @@ def certificate(out_dir, tau_abs):
         ms.load_new_mesh(str(ply))
         V, F = ms.current_mesh().vertex_matrix(), ms.current_mesh().face_matrix()
         lower, upper = hull_reach(V, F, slack=0.01 * tau_abs, limit=tau_abs)
+        if lower <= 1.01 * tau_abs < upper:   # a point just past tau: settle "within tau + 1%" to 0.1% of tau
+            lower2, upper = hull_reach(V, F, slack=0.001 * tau_abs, limit=1.009 * tau_abs)
+            lower = max(lower, lower2)
         worst = max(worst, lower / tau_abs)   # attained; "over" counts the proven upper bounds
         over += upper > 1.01 * tau_abs
     return worst, over
@@ -141,7 +152,7 @@ def main():
                     help="meshes in reverse order: a second run on the same --out meets the first halfway")
     args = ap.parse_args()
     meshes = fetch_corpus()
-    files = corpus(meshes)
+    files = all_files = corpus(meshes)
     peer_set = set(sample(files, meshes, 20 if args.quick else args.sample))
     if args.quick:
         files = sorted(peer_set)
@@ -167,7 +178,7 @@ def main():
     quick = set(sample(files, meshes, 20))
     todo_meshes = set(files) | (peer_set if "peers" in groups else set())
     for p in sorted(todo_meshes, key=lambda p: (p not in quick, p not in peer_set, p), reverse=args.reverse):
-        name = p.relative_to(meshes).with_suffix("").as_posix()
+        name = mesh_name(p, meshes, all_files)
         inp = out / "inputs" / (name.replace("/", "__") + ".obj")
         if not inp.exists():
             bench.to_obj(p, inp)

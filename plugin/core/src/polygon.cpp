@@ -28,6 +28,8 @@ namespace {
 
 using K = CGAL::Exact_predicates_inexact_constructions_kernel;
 
+[[noreturn]] void invalid(const std::string& m) { throw Error(Error::InvalidInput, m); }
+
 double cross(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); }
 
 // Twice the largest distance from the points' centroid: a size that does not change with pose.
@@ -92,7 +94,6 @@ Loop2 cleaned(const Loop2& in, double tol)
 
 std::vector<Polygon2> polygons_from_loops(std::vector<Loop2> loops)
 {
-	auto invalid = [](const std::string& m) { throw Error(Error::InvalidInput, m); };
 	if (loops.empty()) invalid("The polygon has no boundary loop.");
 	Loop2 all;
 	for (const Loop2& l : loops)
@@ -437,10 +438,11 @@ bool separate(const Polygon2& p, const Vec2& from, int vertex, const Vec2& dir_i
 	return false;
 }
 
-PlanarLoops planar_loops(const std::vector<Vec3>& V, const std::vector<Tri>& F, const std::vector<Edge>& E)
+namespace {
+
+// Directed boundary edges: of the faces (an edge whose reverse is not used), else the edges.
+std::vector<Edge> boundary_edges(const std::vector<Vec3>& V, const std::vector<Tri>& F, const std::vector<Edge>& E)
 {
-	auto invalid = [](const std::string& m) { throw Error(Error::InvalidInput, m); };
-	// Directed boundary edges: of the faces (an edge whose reverse is not used), else the edges.
 	std::vector<Edge> boundary;
 	if (!F.empty()) {
 		std::set<std::pair<int, int>> directed;
@@ -455,23 +457,28 @@ PlanarLoops planar_loops(const std::vector<Vec3>& V, const std::vector<Tri>& F, 
 	for (const Edge& e : boundary)
 		if (e[0] < 0 || e[1] < 0 || e[0] >= (int) V.size() || e[1] >= (int) V.size() || e[0] == e[1])
 			invalid("An edge has an invalid vertex index.");
+	return boundary;
+}
 
-	// Chain into loops. Faces give directions; bare edges are undirected (each vertex on two).
+// Chain the edges into loops of vertex ids. Faces give directions; bare edges (`directed` false) are
+// undirected (each vertex on two).
+std::vector<std::vector<int>> chain_loops(const std::vector<Edge>& boundary, bool directed)
+{
 	std::map<int, std::vector<int>> link;
 	for (const Edge& e : boundary) {
 		link[e[0]].push_back(e[1]);
-		if (F.empty()) link[e[1]].push_back(e[0]);
+		if (!directed) link[e[1]].push_back(e[0]);
 	}
 	for (const auto& [v, out] : link) {
-		if (out.size() == (F.empty() ? 2u : 1u)) continue;
-		if (F.empty())
+		if (out.size() == (directed ? 1u : 2u)) continue;
+		if (!directed)
 			invalid("The edges do not form closed loops: a vertex has " + std::to_string(out.size()) +
 			        " edges (each needs exactly 2).");
 		throw Error(Error::InvalidInput, "The mesh's boundary touches itself at a vertex (non-manifold boundary).",
 		            Error::NonManifoldBoundary);
 	}
 	std::set<int>                 used;
-	std::vector<std::vector<int>> index_loops;
+	std::vector<std::vector<int>> loops;
 	for (const auto& [start, out] : link) {
 		if (used.count(start)) continue;
 		std::vector<int> L;
@@ -486,17 +493,15 @@ PlanarLoops planar_loops(const std::vector<Vec3>& V, const std::vector<Tri>& F, 
 			if (!link.count(v)) invalid("The boundary edges do not close into loops.");
 		} while (v != start && L.size() <= link.size());
 		if (v != start) invalid("The boundary edges do not close into loops.");
-		index_loops.push_back(std::move(L));
+		loops.push_back(std::move(L));
 	}
+	return loops;
+}
 
-	// The plane: principal axes of the loops' points.
-	std::vector<Vec3> pts;
-	for (const auto& L : index_loops)
-		for (int v : L) {
-			if (!V[v].allFinite()) invalid("The polygon has NaN or infinite coordinates.");
-			pts.push_back(V[v]);
-		}
-	PlanarLoops out;
+// The plane's frame from the principal axes of the points; with faces, their side is the front (loops
+// then come out counter-clockwise). Refused unless the points are planar to 1e-6 of their size.
+void fit_plane(const std::vector<Vec3>& pts, const std::vector<Vec3>& V, const std::vector<Tri>& F, PlanarLoops& out)
+{
 	for (const Vec3& p : pts) out.origin += p;
 	out.origin /= (double) pts.size();
 	Eigen::Matrix3d C = Eigen::Matrix3d::Zero();
@@ -504,7 +509,7 @@ PlanarLoops planar_loops(const std::vector<Vec3>& V, const std::vector<Tri>& F, 
 	Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es(C);
 	out.n = es.eigenvectors().col(0);
 	out.u = es.eigenvectors().col(2);
-	if (!F.empty()) {   // the faces' side is the front: loops then come out counter-clockwise
+	if (!F.empty()) {
 		Vec3 sum = Vec3::Zero();
 		for (const Tri& t : F) sum += (V[t[1]] - V[t[0]]).cross(V[t[2]] - V[t[0]]);
 		if (sum.dot(out.n) < 0) out.n = -out.n;
@@ -517,6 +522,21 @@ PlanarLoops planar_loops(const std::vector<Vec3>& V, const std::vector<Tri>& F, 
 	if (off > 1e-6 * size)
 		invalid("The outline is not planar (a point lies " + std::to_string(off / size) +
 		        " of the size off its best-fitting plane); the polygon filter needs a planar layer.");
+}
+
+} // namespace
+
+PlanarLoops planar_loops(const std::vector<Vec3>& V, const std::vector<Tri>& F, const std::vector<Edge>& E)
+{
+	const std::vector<std::vector<int>> index_loops = chain_loops(boundary_edges(V, F, E), !F.empty());
+	std::vector<Vec3>                   pts;
+	for (const auto& L : index_loops)
+		for (int v : L) {
+			if (!V[v].allFinite()) invalid("The polygon has NaN or infinite coordinates.");
+			pts.push_back(V[v]);
+		}
+	PlanarLoops out;
+	fit_plane(pts, V, F, out);
 	for (const auto& L : index_loops) {
 		Loop2 l;
 		for (int v : L) l.emplace_back(out.u.dot(V[v] - out.origin), out.w.dot(V[v] - out.origin));
