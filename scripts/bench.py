@@ -11,6 +11,7 @@ concavity of the parts (the filter's max part concavity, fraction of the diagona
 
     scripts/bench.sh                 whole corpus and the scaling table (about an hour on 2 cores)
     scripts/bench.sh --quick         the bunny only, no scaling
+    scripts/bench.sh --quick --parts-before old/libfilter_acd.so   and that build's parts beside this one's
     scripts/bench.sh --meshes cow spot --no-scaling
 Writes out/bench/bench.md and out/bench/bench.png.
 """
@@ -126,6 +127,7 @@ def run_child(method, params, inp, hulls_out):
                 hulls.append((m.vertex_matrix(), m.face_matrix()))
         info["concavity"] = res["max_concavity"]
         info["bbox_diag"] = ms.mesh(0).bounding_box().diagonal()
+        info.update(parts_fingerprint(ms))
     else:
         V, F = read_obj(inp)
         t0 = time.perf_counter()
@@ -146,6 +148,22 @@ def run_child(method, params, inp, hulls_out):
     print("RESULT " + json.dumps(info))
 
 
+def parts_fingerprint(ms):
+    """The part layers' count, total volume and a hash of their exact vertices and faces."""
+    import hashlib
+    import numpy as np
+    h, vol, n = hashlib.sha256(), 0.0, 0
+    for i in range(ms.mesh_number() * 2 + 2):
+        if not ms.mesh_id_exists(i) or not ms.mesh(i).label().startswith("acd_") or \
+                ms.mesh(i).label().startswith("acd_hull_"):
+            continue
+        V, F = ms.mesh(i).vertex_matrix(), ms.mesh(i).face_matrix()
+        h.update(V.tobytes() + F.tobytes())
+        vol += float(np.einsum("ij,ij->i", V[F[:, 0]], np.cross(V[F[:, 1]], V[F[:, 2]])).sum() / 6)
+        n += 1
+    return dict(parts=n, parts_volume=vol, parts_sha=h.hexdigest()[:16])
+
+
 def peak_rss_mb():
     """This process's own peak resident set (VmHWM starts afresh at exec, unlike ru_maxrss, which
     keeps the forking parent's size)."""
@@ -155,13 +173,14 @@ def peak_rss_mb():
     return None
 
 
-def run_method(method, params, inp, hulls_out, timeout):
+def run_method(method, params, inp, hulls_out, timeout, plugin=None):
     if method == "cgal":
         cmd = [str(build_dir() / "core" / "cgal_acd_peer"), str(inp), str(hulls_out), str(params["max_hulls"])]
     else:
         cmd = [sys.executable, __file__, "--child", method, json.dumps(params), str(inp), str(hulls_out)]
     try:
-        r = subprocess.run(cmd, capture_output=True, text=True, timeout=timeout)
+        env = dict(os.environ, ACD_PLUGIN=str(plugin)) if plugin else None
+        r = subprocess.run(cmd, capture_output=True, text=True, timeout=timeout, env=env)
     except subprocess.TimeoutExpired:
         return {"error": "timeout after %d s" % timeout}
     out = r.stdout
@@ -188,6 +207,24 @@ def metrics(inp, hulls, samples):
 
 def fmt(x, spec):
     return "n/a" if x is None else format(x, spec)
+
+
+def parts_side_by_side(args, outdir):
+    """Ours at the defaults with another plugin build and with this one: the same parts?"""
+    print("| mesh | parts (other / this) | parts' volume (other / this) | identical |\n|---|---|---|---|", flush=True)
+    inputs = outdir / "inputs"
+    inputs.mkdir(parents=True, exist_ok=True)
+    for name, src in corpus(args.meshes):
+        inp = inputs / (name + ".obj")
+        if not inp.exists():
+            to_obj(src, inp)
+        runs = [run_method("ours", {}, inp, outdir / "parts_check.obj", args.timeout, plugin)
+                for plugin in (args.parts_before, None)]
+        a, b = runs
+        same = "error" not in a and all(a.get(k) == b.get(k) for k in ("parts", "parts_volume", "parts_sha"))
+        print(f"| {name} | {a.get('parts', a.get('error'))} / {b.get('parts', b.get('error'))} | "
+              f"{a.get('parts_volume')} / {b.get('parts_volume')} | {'yes' if same else 'NO'} |", flush=True)
+    print(flush=True)
 
 
 def bench_corpus(args, outdir):
@@ -322,6 +359,9 @@ def main():
     ap.add_argument("--samples", type=int, default=200000, help="Monte Carlo samples per metric")
     ap.add_argument("--timeout", type=int, default=900, help="seconds per method run")
     ap.add_argument("--out", default=str(REPO / "out" / "bench"))
+    ap.add_argument("--parts-before", metavar="PLUGIN",
+                    help="also decompose with this other build of the plugin (libfilter_acd.so) at the defaults "
+                         "and print both builds' parts side by side (count, volume, exact hash)")
     args = ap.parse_args()
     if args.child:
         return run_child(*args.child)
@@ -338,6 +378,8 @@ def main():
         shape, srows, exp = scaling(args, outdir)
         print("Fitted exponent (time ~ faces^k): k = " + fmt(exp, ".2f"))
         return
+    if args.parts_before:
+        parts_side_by_side(args, outdir)
     print(HEADER, flush=True)
     rows = bench_corpus(args, outdir)
     plot(rows, outdir / "bench.png")
