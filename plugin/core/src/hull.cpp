@@ -1,4 +1,5 @@
 #include "acd/hull.h"
+#include "acd/disjoint_sets.h"
 
 #include <CGAL/AABB_traits_3.h>
 #include <CGAL/AABB_tree.h>
@@ -42,11 +43,6 @@ struct BitsHash
 	}
 };
 
-int root(std::vector<int>& p, int x)
-{
-	while (p[x] != x) x = p[x] = p[p[x]];
-	return x;
-}
 } // namespace
 
 struct ConvexHull::Tree
@@ -89,9 +85,9 @@ SMesh cgal_hull(const std::vector<Vec3>& input, std::unordered_map<Point, int, B
 std::vector<int> coplanar_groups(const std::vector<Vec3>& points, const std::vector<Tri>& triangles,
                                  std::vector<std::vector<std::pair<double, int>>>& across)
 {
-	double extent = 0;
-	for (const Vec3& p : points) extent = std::max(extent, (p - points[0]).norm());
-	const double noise = 1e-12 * extent;
+	double reach = 0;   // from the first point: a size for the tolerances
+	for (const Vec3& p : points) reach = std::max(reach, (p - points[0]).norm());
+	const double noise = 1e-12 * reach;
 	// A sliver (nearly collinear corners, as cut outlines give) has no normal of its own worth the
 	// name: it joins a proper neighbouring facet afterwards, whose plane holds it to rounding (across
 	// its longest edge when that neighbour is proper; slivers next to slivers wait for a later pass).
@@ -105,15 +101,14 @@ std::vector<int> coplanar_groups(const std::vector<Vec3>& points, const std::vec
 		const Vec3 n = (points[T[1]] - points[T[0]]).cross(points[T[2]] - points[T[0]]);
 		height[t]    = n.norm() / across[t][0].first;
 		normal[t]    = n.normalized();
-		proper[t]    = height[t] > 1e-10 * extent;
+		proper[t]    = height[t] > 1e-10 * reach;
 	}
-	std::vector<int> parent(triangles.size());
-	std::iota(parent.begin(), parent.end(), 0);
+	DisjointSets sets(triangles.size());
 	for (int t = 0; t < (int) triangles.size(); ++t)
 		for (const auto& [len, g] : across[t]) {
 			if (g < t || !proper[t] || !proper[g]) continue;
 			const double angle = std::atan2(normal[t].cross(normal[g]).norm(), normal[t].dot(normal[g]));
-			if (angle <= noise / height[t] + noise / height[g]) parent[root(parent, t)] = root(parent, g);
+			if (angle <= noise / height[t] + noise / height[g]) sets.unite(t, g);
 		}
 	for (bool changed = true; changed;) {
 		changed = false;
@@ -121,14 +116,15 @@ std::vector<int> coplanar_groups(const std::vector<Vec3>& points, const std::vec
 			if (proper[t]) continue;
 			for (const auto& [len, g] : across[t])
 				if (proper[g]) {
-					parent[root(parent, t)] = root(parent, g);
+					sets.unite(t, g);
 					proper[t] = changed = true;
 					break;
 				}
 		}
 	}
-	for (int t = 0; t < (int) triangles.size(); ++t) parent[t] = root(parent, t);
-	return parent;
+	std::vector<int> group(triangles.size());
+	for (int t = 0; t < (int) triangles.size(); ++t) group[t] = sets.root(t);
+	return group;
 }
 
 } // namespace

@@ -1,4 +1,5 @@
 #include "acd/mesh.h"
+#include "acd/disjoint_sets.h"
 #include "acd/topology.h"
 
 #include <Eigen/Eigenvalues>
@@ -33,11 +34,6 @@ struct EdgeHash
 	throw Error(Error::InvalidInput, msg, code, count);
 }
 
-int find_root(std::vector<int>& p, int x)
-{
-	while (p[x] != x) x = p[x] = p[p[x]];
-	return x;
-}
 
 } // namespace
 
@@ -150,20 +146,19 @@ std::vector<int> face_components(const TriMesh& m, int* count)
 	// two endpoints' short edge lists, no hash map.
 	const Topology   t(m);
 	const int        nf = (int) m.F.size();
-	std::vector<int> parent(nf);
-	std::iota(parent.begin(), parent.end(), 0);
+	DisjointSets     sets(nf);
 	for (int f = 0; f < nf; ++f)
 		for (int k = 0; k < 3; ++k) {
 			const int a = m.F[f][k], b = m.F[f][(k + 1) % 3];
 			for (int i = t.adj_start[b]; i < t.adj_start[b + 1]; ++i)   // b->a: the usual neighbour
-				if (t.adj[i] == a) parent[find_root(parent, f)] = find_root(parent, t.adj_corner[i] / 3);
+				if (t.adj[i] == a) sets.unite(f, t.adj_corner[i] / 3);
 			for (int i = t.adj_start[a]; i < t.adj_start[a + 1]; ++i)   // a->b again: misoriented or non-manifold
-				if (t.adj[i] == b) parent[find_root(parent, f)] = find_root(parent, t.adj_corner[i] / 3);
+				if (t.adj[i] == b) sets.unite(f, t.adj_corner[i] / 3);
 		}
 	std::vector<int> comp(nf, -1), id(nf, -1);
 	int              n = 0;
 	for (int f = 0; f < nf; ++f) {
-		int& r  = id[find_root(parent, f)];
+		int& r  = id[sets.root(f)];
 		if (r < 0) r = n++;
 		comp[f] = r;
 	}

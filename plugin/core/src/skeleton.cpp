@@ -1,5 +1,6 @@
 #include "acd/skeleton.h"
 
+#include "acd/disjoint_sets.h"
 #include "acd/hull.h"
 
 #include <Eigen/Eigenvalues>
@@ -60,19 +61,6 @@ Vec3 principal_axis(const TriMesh& m, const Vec3& c)
 	Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es(surface_moments(m, c).second);   // ascending
 	return es.eigenvectors().col(2);
 }
-
-// Union-find over 0..n-1 (path halving).
-struct DisjointSets
-{
-	std::vector<int> parent;
-	explicit DisjointSets(size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), 0); }
-	int root(int x)
-	{
-		while (parent[x] != x) x = parent[x] = parent[parent[x]];
-		return x;
-	}
-	void unite(int a, int b) { parent[root(a)] = root(b); }
-};
 
 struct Piece
 {
