@@ -209,15 +209,21 @@ def fmt(x, spec):
     return "n/a" if x is None else format(x, spec)
 
 
+def inputs(args, outdir):
+    """(name, OBJ copy) of each corpus mesh, converted once into outdir/inputs."""
+    folder = outdir / "inputs"
+    folder.mkdir(parents=True, exist_ok=True)
+    for name, src in corpus(args.meshes):
+        inp = folder / (name + ".obj")
+        if not inp.exists():
+            to_obj(src, inp)
+        yield name, inp
+
+
 def parts_side_by_side(args, outdir):
     """Ours at the defaults with another plugin build and with this one: the same parts?"""
     print("| mesh | parts (other / this) | parts' volume (other / this) | identical |\n|---|---|---|---|", flush=True)
-    inputs = outdir / "inputs"
-    inputs.mkdir(parents=True, exist_ok=True)
-    for name, src in corpus(args.meshes):
-        inp = inputs / (name + ".obj")
-        if not inp.exists():
-            to_obj(src, inp)
+    for name, inp in inputs(args, outdir):
         runs = [run_method("ours", {}, inp, outdir / "parts_check.obj", args.timeout, plugin)
                 for plugin in (args.parts_before, None)]
         a, b = runs
@@ -229,12 +235,7 @@ def parts_side_by_side(args, outdir):
 
 def bench_corpus(args, outdir):
     rows = []
-    inputs = outdir / "inputs"
-    inputs.mkdir(parents=True, exist_ok=True)
-    for name, src in corpus(args.meshes):
-        inp = inputs / (name + ".obj")
-        if not inp.exists():
-            to_obj(src, inp)
+    for name, inp in inputs(args, outdir):
         faces = face_count(inp)
         for method, label, params in SETTINGS:
             hulls = outdir / "hulls" / f"{name}__{method}__{label.split()[0]}{label.split()[1]}.obj"
