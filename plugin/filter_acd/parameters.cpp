@@ -52,7 +52,24 @@ const Choices<Preprocessing, 3> kPreprocessing = {{{"none", Preprocessing::None}
                                                    {"auto", Preprocessing::Auto}}};
 const Choices<bool, 2> kOnSelfIntersection = {{{"warn", false}, {"refuse", true}}};
 
-// tau, its unit, hole order and max_parts: the parameters 3D and 2D share (`what`: parts or pieces).
+// The alpha wrap's two lengths (percentages of the size), in menu order.
+struct Number
+{
+	const char* name;
+	float       value;
+	const char* label;
+	const char* help;
+};
+const Number kWrapNumbers[] = {
+	{"wrap_alpha", 1.0f, "Alpha wrap: alpha (%)",
+	 "With alpha_wrap: gaps, holes and cavities narrower than about this are closed, as a percentage of the "
+	 "enclosing-sphere diameter (smaller keeps more detail and costs more)."},
+	{"wrap_offset", 0.1f, "Alpha wrap: offset (%)",
+	 "With alpha_wrap: how far outside the input the wrap lies, i.e. how far it may move the surface, as a "
+	 "percentage of the enclosing-sphere diameter."},
+};
+
+// tau and its unit, as 3D and 2D declare them (`size_of`: what the percentage is of).
 void add_tau(RichParameterList& p, float tau, const QString& size_of)
 {
 	p.addParam(RichFloat("tau", tau, "Concavity tolerance (tau)",
@@ -109,12 +126,7 @@ void add_decomposition_parameters(RichParameterList& p, float tau, int cut_plane
 		"it is a valid solid, else welded (vertices within 1e-5 of its size) if that makes it one, else "
 		"alpha wrapped, doubling alpha (up to 16%) while the wrap is a hollow skin that slipped inside "
 		"through small holes; an open shell that no such wrap fills keeps the first wrap, its skin."));
-	p.addParam(RichFloat("wrap_alpha", 1.0, "Alpha wrap: alpha (%)",
-	                     "With alpha_wrap: gaps, holes and cavities narrower than about this are closed, as a "
-	                     "percentage of the enclosing-sphere diameter (smaller keeps more detail and costs more)."));
-	p.addParam(RichFloat("wrap_offset", 0.1, "Alpha wrap: offset (%)",
-	                     "With alpha_wrap: how far outside the input the wrap lies, i.e. how far it may move the "
-	                     "surface, as a percentage of the enclosing-sphere diameter."));
+	for (const Number& n : kWrapNumbers) p.addParam(RichFloat(n.name, n.value, n.label, n.help));
 	p.addParam(RichEnum(
 		"on_self_intersection", 0, labels(kOnSelfIntersection), "If the mesh intersects itself",
 		"warn: decompose anyway and say so in the log and result (slight crossings, common in scans, "

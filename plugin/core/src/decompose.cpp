@@ -303,10 +303,7 @@ public:
 		for (int id : roots) measure_node(id);
 		rec.start_with(roots);
 		rec.run(*this);
-		D.max_parts_reached  = rec.max_parts_reached;
-		D.time_limit_reached = rec.time_limit_reached;
-		if (keep)
-			for (int l : D.leaves()) D.kept_cavities += D.nodes[l].cavities;
+		rec.record(D, D.kept_cavities);
 		return std::move(D);
 	}
 

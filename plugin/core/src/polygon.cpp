@@ -646,10 +646,7 @@ public:
 	{
 		rec.start_with({add_node(poly, -1, "0")});
 		rec.run(*this);
-		D.max_parts_reached  = rec.max_parts_reached;
-		D.time_limit_reached = rec.time_limit_reached;
-		if (keep)
-			for (int l : D.leaves()) D.kept_holes += D.nodes[l].holes;
+		rec.record(D, D.kept_holes);
 		return std::move(D);
 	}
 

@@ -84,6 +84,17 @@ public:
 		if (lim.progress) lim.progress(100, "Decomposition done");
 	}
 
+	// Into the finished tree: which limit stopped the recursion, and (holes kept) the holes left in
+	// its leaves.
+	template <class Tree> void record(Tree& D, int& kept_holes) const
+	{
+		D.max_parts_reached  = max_parts_reached;
+		D.time_limit_reached = time_limit_reached;
+		if (lim.keep_holes)
+			for (const NodeT& n : nodes)
+				if (n.leaf()) kept_holes += holes_in(n);
+	}
+
 	bool max_parts_reached = false, time_limit_reached = false;
 
 private:
