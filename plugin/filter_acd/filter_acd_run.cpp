@@ -465,7 +465,7 @@ FilterACD::decomposePolygon(const RichParameterList& par, MeshDocument& md, vcg:
 		const acd::Decomposition2 d = acd::decompose(polys[k], o);
 		trees.push_back(d);
 		holes += (int) polys[k].holes.size();
-		notches += d.nodes[0].notches;
+		notches += d.nodes[0].notch_count;
 		hole_cuts += d.hole_cuts;
 		kept += d.kept_holes;
 		max_reached |= d.max_parts_reached;

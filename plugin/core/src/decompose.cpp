@@ -351,7 +351,7 @@ private:
 		n.hull_distance       = ms->rep.hull_reach;
 		n.hull_distance_bound = ms->rep.hull_reach_bound;
 		n.volume              = signed_volume(n.mesh);
-		n.notches             = ms->rep.notches;
+		n.notch_count         = ms->rep.notches;
 		n.cavities            = (int) ms->cavities.size();
 		if (ms->rep.max_vertex >= 0) n.notch = ms->surface(n.mesh).V[ms->rep.max_vertex];
 		if (rec.needs_cut(n)) measured[id] = std::move(ms);

@@ -21,7 +21,7 @@ namespace acd {
 // The recursion's hole count of a polygon node.
 int holes_in(const Node2& n)
 {
-	return n.holes;
+	return n.hole_count;
 }
 
 namespace {
@@ -206,7 +206,7 @@ Concavity2 measure_concavity(const Polygon2& p)
 			}
 			deepest = std::max(deepest, d);
 		}
-		r.holes.push_back(deepest);
+		r.hole_depth.push_back(deepest);
 	}
 	return r;
 }
@@ -595,7 +595,7 @@ Scored score(const Polygon2& p, bool keep)
 	const Concavity2 c = measure_concavity(p);
 	Scored           s{c.max_concavity, (int) p.holes.size()};
 	if (!keep)
-		for (double d : c.holes) s.conc = std::max(s.conc, d);
+		for (double d : c.hole_depth) s.conc = std::max(s.conc, d);
 	return s;
 }
 
@@ -679,8 +679,8 @@ private:
 		n.polygon          = std::move(p);
 		const Concavity2 c = measure_concavity(n.polygon);
 		n.concavity        = c.max_concavity;
-		n.notches          = c.notches;
-		n.holes            = (int) n.polygon.holes.size();
+		n.notch_count      = c.notches;
+		n.hole_count       = (int) n.polygon.holes.size();
 		n.area             = area(n.polygon);
 		if (c.max_vertex >= 0) n.notch = n.polygon.outer[c.max_vertex];
 		D.nodes.push_back(std::move(n));
@@ -695,8 +695,8 @@ private:
 		const Polygon2&   P = D.nodes[c.id].polygon;
 		const Concavity2& m = measured[c.id];
 		if (keep || P.holes.empty()) return;
-		c.hole = (int) (std::max_element(m.holes.begin(), m.holes.end()) - m.holes.begin());
-		if (opt.hole_order == HoleOrder::ByConcavity && m.holes[c.hole] <= m.max_concavity && m.max_concavity > opt.tau)
+		c.hole = (int) (std::max_element(m.hole_depth.begin(), m.hole_depth.end()) - m.hole_depth.begin());
+		if (opt.hole_order == HoleOrder::ByConcavity && m.hole_depth[c.hole] <= m.max_concavity && m.max_concavity > opt.tau)
 			c.hole = -1;
 	}
 

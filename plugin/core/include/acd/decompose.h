@@ -57,7 +57,7 @@ struct Node
 	double      hull_distance = 0; // how far the node's hull reaches beyond it (attained; see hull_reach.h)
 	double      hull_distance_bound = 0;   // and no farther than this
 	double      volume = 0;
-	int         notches = 0;
+	int         notch_count = 0;   // reflex edges
 	Vec3        notch = Vec3::Zero();   // most concave notch (meaningful if concavity > 0)
 	bool        has_plane = false;      // internal node: the cut
 	Plane       plane;

@@ -30,7 +30,7 @@ struct Line2
 struct Concavity2
 {
 	std::vector<double> outer;   // per outer vertex: distance to its pocket's bridge line, 0 on the hull
-	std::vector<double> holes;   // per hole: deepest vertex's distance below the hull's boundary
+	std::vector<double> hole_depth;   // per hole: deepest vertex's distance below the hull's boundary
 	double max_concavity = 0;    // over outer notches (reflex vertices)
 	int    max_vertex = -1;      // outer vertex index of the most concave notch
 	int    notches = 0;          // reflex outer vertices
@@ -47,8 +47,8 @@ struct Node2
 	std::string path;
 	double      concavity = 0;   // outer notches only; holes are counted in `holes`
 	double      area = 0;
-	int         notches = 0;
-	int         holes = 0;
+	int         notch_count = 0;   // reflex outer vertices
+	int         hole_count = 0;
 	Vec2        notch = Vec2::Zero();
 	bool        has_cut = false;
 	Vec2        cut_from = Vec2::Zero(), cut_to = Vec2::Zero();   // the cut's extreme points
