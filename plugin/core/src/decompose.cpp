@@ -288,23 +288,16 @@ struct Cut
 };
 
 // Approx_CD for a solid, as named stages; the recursion's queue and limits are shared with 2D.
-class Driver
+class Driver : public Driving<Driver, Decomposition, DecomposeOptions>
 {
 public:
-	explicit Driver(const DecomposeOptions& opt)
-	    : opt(opt), keep(opt.hole_handling == HoleHandling::KeepCavities), rec(D.nodes, limits_from(opt, keep, kMaxDepth))
-	{
-		D.tau = opt.tau;
-	}
+	explicit Driver(const DecomposeOptions& opt) : Driving(opt, opt.hole_handling == HoleHandling::KeepCavities, kMaxDepth) {}
 
 	Decomposition run(const Solid& solid)
 	{
 		const std::vector<int> roots = root_nodes(solid);
 		for (int id : roots) measure_node(id);
-		rec.start_with(roots);
-		rec.run(*this);
-		rec.record(D, D.kept_cavities);
-		return std::move(D);
+		return finish(roots, &Decomposition::kept_cavities);
 	}
 
 	// One node: its target, candidate planes, their trials, the pick; the parts added.
@@ -325,12 +318,8 @@ public:
 	void forget(int id) { measured[id].reset(); }
 
 private:
-	const DecomposeOptions&                opt;
-	const bool                             keep;
-	Decomposition                          D;
 	std::vector<std::unique_ptr<Measured>> measured;   // kept while a node waits to be cut
 	std::unordered_map<int, int>           films;      // per node: films dropped (bounded)
-	Recursion<Node>                        rec;
 
 	int add_node(TriMesh mesh, int parent, const std::string& path)
 	{

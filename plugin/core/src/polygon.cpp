@@ -633,22 +633,12 @@ struct Cut2
 };
 
 // Algorithm 5.3 for a polygon with holes, as named stages; the recursion is the one 3D uses.
-class Driver2
+class Driver2 : public Driving<Driver2, Decomposition2, PolygonOptions>
 {
 public:
-	explicit Driver2(const PolygonOptions& opt)
-	    : opt(opt), keep(opt.hole_handling == HoleCut::KeepHoles), rec(D.nodes, limits_from(opt, keep, kMaxDepth))
-	{
-		D.tau = opt.tau;
-	}
+	explicit Driver2(const PolygonOptions& opt) : Driving(opt, opt.hole_handling == HoleCut::KeepHoles, kMaxDepth) {}
 
-	Decomposition2 run(const Polygon2& poly)
-	{
-		rec.start_with({add_node(poly, -1, "0")});
-		rec.run(*this);
-		rec.record(D, D.kept_holes);
-		return std::move(D);
-	}
+	Decomposition2 run(const Polygon2& poly) { return finish({add_node(poly, -1, "0")}, &Decomposition2::kept_holes); }
 
 	int cut(int id)
 	{
@@ -665,11 +655,7 @@ public:
 	void forget(int) {}
 
 private:
-	const PolygonOptions&   opt;
-	const bool              keep;
-	Decomposition2          D;
 	std::vector<Concavity2> measured;
-	Recursion<Node2>        rec;
 
 	int add_node(Polygon2 p, int parent, const std::string& path)
 	{

@@ -143,4 +143,32 @@ private:
 	}
 };
 
+// What a dimension's driver holds: its options, the tree, and the recursion over the tree's nodes.
+// `Cutter` (the derived driver) has cut(id) and forget(id); `kept` names the tree's count of holes
+// left in parts.
+template <class Cutter, class Tree, class Options> class Driving
+{
+protected:
+	using NodeT = typename decltype(Tree::nodes)::value_type;
+
+	Driving(const Options& opt, bool keep, size_t max_depth) : opt(opt), keep(keep), rec(D.nodes, limits_from(opt, keep, max_depth))
+	{
+		D.tau = opt.tau;
+	}
+
+	// Cut from the given first nodes (already measured) until done; the finished tree.
+	Tree finish(const std::vector<int>& roots, int Tree::*kept)
+	{
+		rec.start_with(roots);
+		rec.run(static_cast<Cutter&>(*this));
+		rec.record(D, D.*kept);
+		return std::move(D);
+	}
+
+	const Options&   opt;
+	const bool       keep;
+	Tree             D;
+	Recursion<NodeT> rec;
+};
+
 } // namespace acd
