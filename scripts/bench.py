@@ -148,20 +148,20 @@ def run_child(method, params, inp, hulls_out):
     print("RESULT " + json.dumps(info))
 
 
-def parts_fingerprint(ms):
-    """The part layers' count, total volume and a hash of their exact vertices and faces."""
+def parts_fingerprint(ms, ids=None):
+    """Count, total volume and a hash of the exact vertices and faces of the layers `ids` (default: the
+    part layers, acd_* but not acd_hull_*)."""
     import hashlib
     import numpy as np
-    h, vol, n = hashlib.sha256(), 0.0, 0
-    for i in range(ms.mesh_number() * 2 + 2):
-        if not ms.mesh_id_exists(i) or not ms.mesh(i).label().startswith("acd_") or \
-                ms.mesh(i).label().startswith("acd_hull_"):
-            continue
+    if ids is None:
+        ids = [i for i in range(ms.mesh_number() * 2 + 2) if ms.mesh_id_exists(i) and
+               ms.mesh(i).label().startswith("acd_") and not ms.mesh(i).label().startswith("acd_hull_")]
+    h, vol = hashlib.sha256(), 0.0
+    for i in ids:
         V, F = ms.mesh(i).vertex_matrix(), ms.mesh(i).face_matrix()
         h.update(V.tobytes() + F.tobytes())
         vol += float(np.einsum("ij,ij->i", V[F[:, 0]], np.cross(V[F[:, 1]], V[F[:, 2]])).sum() / 6)
-        n += 1
-    return dict(parts=n, parts_volume=vol, parts_sha=h.hexdigest()[:16])
+    return dict(parts=len(ids), parts_volume=vol, parts_sha=h.hexdigest()[:16])
 
 
 def peak_rss_mb():

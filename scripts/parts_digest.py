@@ -9,17 +9,17 @@ layer's exact vertex and face arrays. Run it once per plugin build and compare:
 Cases: CAD solids (manifold3d) with every cut_plane_selection, the bundled bunny, a 2D polygon with
 holes, the skeleton and the hull union."""
 import argparse
-import hashlib
 import json
 import pathlib
 import sys
 
-import numpy as np
 import pymeshlab
 
 REPO = pathlib.Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(REPO / "tests"))
 import cad_solids  # noqa: E402
+sys.path.insert(0, str(REPO / "scripts"))
+import bench  # noqa: E402
 import pymeshlab_acd  # noqa: E402
 from pymeshlab_acd import polygon_io  # noqa: E402
 
@@ -28,19 +28,8 @@ DATA = REPO.parent / "shared" / "data"
 
 def layers_digest(ms, first):
     """Part count, volume sum and exact hash of the layers added after id `first`."""
-    h, vol, n = hashlib.sha256(), 0.0, 0
-    for mid in pymeshlab_acd.mesh_ids(ms):
-        if mid <= first:
-            continue
-        m = ms.mesh(mid)
-        v, f = m.vertex_matrix(), m.face_matrix()
-        h.update(np.ascontiguousarray(v, np.float64).tobytes())
-        h.update(np.ascontiguousarray(f, np.int64).tobytes())
-        if len(f):
-            a, b, c = v[f[:, 0]], v[f[:, 1]], v[f[:, 2]]
-            vol += float(np.einsum("ij,ij->i", a, np.cross(b, c)).sum() / 6)
-        n += 1
-    return dict(layers=n, volume=round(vol, 9), sha=h.hexdigest()[:16])
+    f = bench.parts_fingerprint(ms, [i for i in pymeshlab_acd.mesh_ids(ms) if i > first])
+    return dict(layers=f["parts"], volume=round(f["parts_volume"], 9), sha=f["parts_sha"])
 
 
 def solid(ms, name):
