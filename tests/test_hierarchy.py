@@ -26,10 +26,14 @@ def bunny_tree(tmp_path_factory):
 def test_tree_saves_hulls_planes_and_concavity(bunny_tree):
     tree, res, v0 = bunny_tree
     nodes = json.loads(tree.read_text())["nodes"]
-    assert len(nodes) == 2 * res["parts"] - 1
+    cut = [n for n in nodes if "merged" not in n]   # the cut tree; merged parts are listed after it
+    leaves = [n for n in cut if n["leaf"]]
+    assert len(cut) == 2 * len(leaves) - 1
+    assert res["parts"] == len(leaves) - sum(len(n["merged"]) - 1 for n in nodes if "merged" in n)
     for n in nodes:
         assert "hull" in n and len(n["hull"]["f"]) >= 12 and "concavity" in n and "volume" in n
-        assert ("plane" in n) == (not n["leaf"]) and ("mesh" in n) == n["leaf"]
+        assert ("plane" in n) == (not n["leaf"] and "merged" not in n)
+        assert ("mesh" in n) == (n["leaf"] or "merged" in n)
 
 
 def test_concavity_decreases_with_depth(bunny_tree):

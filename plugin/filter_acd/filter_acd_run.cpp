@@ -243,7 +243,7 @@ FilterACD::decompose(const RichParameterList& par, MeshDocument& md, vcg::CallBa
 	const bool hulls     = par.getBool("output_hulls");
 	const int  max_hullv = par.getInt("max_hull_vertices");
 	int        idx       = 0;
-	for (int li : d.leaves()) {
+	for (int li : d.parts()) {
 		const acd::Node& n = d.nodes[li];
 		add_layer(md, layer_name("acd_", n.path), n.mesh, &input, idx);
 		if (hulls) {
@@ -259,7 +259,7 @@ FilterACD::decompose(const RichParameterList& par, MeshDocument& md, vcg::CallBa
 	const int    uncut = (int) std::count_if(d.nodes.begin(), d.nodes.end(), [](const acd::Node& n) { return n.uncut; });
 	log("Approximate convex decomposition: %d parts, tau %g (model units), max part concavity %g, farthest "
 	    "hull %g from its part, %.2f s%s",
-	    idx, o.tau, d.max_leaf_concavity(), d.max_hull_distance(), secs,
+	    idx, o.tau, d.max_part_concavity(), d.max_hull_distance(), secs,
 	    d.max_parts_reached ? " (max_parts reached: some parts exceed tau)" : "");
 	if (uncut > 0) log("Warning: %d parts above tau could not be cut by any candidate plane", uncut);
 	if (d.films_dropped > 0)
@@ -273,7 +273,7 @@ FilterACD::decompose(const RichParameterList& par, MeshDocument& md, vcg::CallBa
 		{"tau", o.tau},
 		{"tau_model_units", o.tau},
 		{"size", size},
-		{"max_concavity", d.max_leaf_concavity()},
+		{"max_concavity", d.max_part_concavity()},
 		{"root_concavity", d.nodes[0].concavity},
 		{"time", secs},
 		{"max_parts_reached", d.max_parts_reached},
@@ -342,7 +342,7 @@ std::map<std::string, QVariant> FilterACD::hullUnion(const RichParameterList& pa
 	const int  maxv  = par.getInt("max_hull_vertices");
 	std::vector<acd::TriMesh> hulls;
 	int                       idx = 0;
-	for (int li : run.d.leaves()) {
+	for (int li : run.d.parts()) {
 		const acd::Node& n = run.d.nodes[li];
 		acd::TriMesh     h = acd::ConvexHull(n.mesh.V).canonical_mesh();
 		if (maxv > 3 && (int) h.V.size() > maxv) h = acd::simplify_hull(h, maxv);
@@ -422,13 +422,13 @@ std::map<std::string, QVariant> FilterACD::levelOfDetail(const RichParameterList
 	}
 	const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 	log("Level of detail: %d parts of the saved %d (%s), max part concavity %g, %.2f s, nothing recomputed",
-	    idx, (int) D.leaves().size(), by_depth ? qUtf8Printable(QString("depth %1").arg(depth))
+	    idx, (int) D.parts().size(), by_depth ? qUtf8Printable(QString("depth %1").arg(depth))
 	                                           : qUtf8Printable(QString("tau %1").arg(tau)),
 	    worst, secs);
 	if (open_parts > 0) log("Warning: %d rebuilt parts are not closed.", open_parts);
 	return {
 		{"parts", idx},
-		{"tree_parts", (int) D.leaves().size()},
+		{"tree_parts", (int) D.parts().size()},
 		{"tau_model_units", by_depth ? D.tau : tau},
 		{"max_concavity", worst},
 		{"open_parts", open_parts},

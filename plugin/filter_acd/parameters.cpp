@@ -84,7 +84,7 @@ void add_tau(RichParameterList& p, float tau, const QString& size_of)
 } // namespace
 
 void add_decomposition_parameters(RichParameterList& p, float tau, int cut_plane_default, bool output_hulls,
-                                  bool max_hull_vertices)
+                                  bool max_hull_vertices, bool merge)
 {
 	add_tau(p, tau, "mesh's smallest enclosing sphere");
 	p.addParam(RichEnum(
@@ -110,6 +110,12 @@ void add_decomposition_parameters(RichParameterList& p, float tau, int cut_plane
 		"max_parts", 0, "Maximum number of parts",
 		"Stop after this many parts (0 = no limit); the most concave notches are cut first, and the "
 		"result reports whether the limit was reached."));
+	if (merge)
+		p.addParam(RichBool(
+			"merge_parts", true, "Merge neighbouring parts",
+			"After the cuts, merge parts that share a cut face while their union stays within tau (by the "
+			"same measure as the cuts, hull distance included), the least concave union first: fewer "
+			"parts, still an exact partition. Off: the cut tree's leaves as they are."));
 	if (output_hulls)
 		p.addParam(RichBool("output_hulls", false, "Also add part hulls",
 		                    "Add the convex hull of each part as a layer too (named acd_hull_<path>)."));
@@ -191,6 +197,8 @@ acd::DecomposeOptions decompose_options(const RichParameterList& par, double siz
 	o.hole_handling       = chosen(par, "hole_handling", kCavityCuts);
 	o.hole_order          = chosen(par, "hole_order", kHoleOrders);
 	o.time_limit_seconds  = par.getFloat("time_limit");
+	// The skeleton follows the cut tree, so its filter has no merge.
+	o.merge_parts         = par.hasParameter("merge_parts") && par.getBool("merge_parts");
 	if (o.max_parts < 0) throw MLException("max_parts must be 0 (no limit) or positive.");
 	if (o.time_limit_seconds < 0) throw MLException("time_limit must be 0 (no limit) or positive.");
 	if (cb) o.progress = [cb](int pct, const char* msg) { return cb(pct, msg); };

@@ -17,9 +17,9 @@
 namespace acdml {
 
 // Parameters of the filters that decompose a mesh (decomposition, skeleton, hull union); `tau`
-// and the cut's default differ per filter.
+// and the cut's default differ per filter; `merge` offers merge_parts (off where absent).
 void add_decomposition_parameters(RichParameterList& p, float tau, int cut_plane_default, bool output_hulls,
-                                  bool max_hull_vertices);
+                                  bool max_hull_vertices, bool merge);
 void add_polygon_parameters(RichParameterList& p);
 void add_level_of_detail_parameters(RichParameterList& p);
 

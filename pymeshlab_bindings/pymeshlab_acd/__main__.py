@@ -67,7 +67,7 @@ def cmd_decompose(a):
     ms = _meshset(a.mesh)
     src = ms.current_mesh_id()
     params = dict(tau=a.tau, tau_unit=a.tau_unit, cut_plane_selection=a.cut_plane_selection,
-                  max_parts=a.max_parts, output_hulls=bool(a.hulls or a.out), max_hull_vertices=a.max_hull_vertices,
+                  max_parts=a.max_parts, merge_parts=a.merge_parts, output_hulls=bool(a.hulls or a.out), max_hull_vertices=a.max_hull_vertices,
                   time_limit=a.time_limit, preprocessing=a.preprocessing, wrap_alpha=a.wrap_alpha,
                   wrap_offset=a.wrap_offset, on_self_intersection=a.on_self_intersection,
                   hole_handling=a.hole_handling, hole_order=a.hole_order)
@@ -181,7 +181,7 @@ def cmd_batch(a):
                         ray_runtime_env=json.loads(a.ray_runtime_env) if a.ray_runtime_env else None,
                         progress=a.progress, tau=a.tau, tau_unit=a.tau_unit,
                         cut_plane_selection=a.cut_plane_selection, max_parts=a.max_parts,
-                        max_hull_vertices=a.max_hull_vertices, preprocessing=a.preprocessing,
+                        merge_parts=a.merge_parts, max_hull_vertices=a.max_hull_vertices, preprocessing=a.preprocessing,
                         wrap_alpha=a.wrap_alpha, wrap_offset=a.wrap_offset,
                         time_limit=a.time_limit, timeout=a.timeout, formats=fmt, scale=a.scale, density=a.density,
                         save_tree=a.save_tree)
@@ -268,7 +268,8 @@ def main(argv=None):
         s.add_argument("--no-progress", dest="progress", action="store_false", help="no progress bar")
     c.add_argument("--out", help="folder for concavity.ply (vertex quality = concavity)")
     d.add_argument("--out", help="folder for hulls.obj (one object per hull), parts.obj and summary.json")
-    add_arguments(d, "tau", "tau_unit", "cut_plane_selection", "max_parts", "max_hull_vertices", "preprocessing",
+    add_arguments(d, "tau", "tau_unit", "cut_plane_selection", "max_parts", "merge_parts", "max_hull_vertices",
+                  "preprocessing",
                   "wrap_alpha", "wrap_offset", "time_limit")
     d.add_argument("--hole-handling", default="best_plane", choices=["best_plane", "principal_plane", "keep_cavities"],
                    help="how cavities (closed inner shells) are resolved")
@@ -298,8 +299,8 @@ def main(argv=None):
                    "or auto), or 'local' to start a local Ray instance of --workers CPUs")
     b.add_argument("--ray-runtime-env", metavar="JSON", help="Ray runtime_env for the workers, e.g. "
                    "'{\"pip\": [\"/shared/pymeshlab_acd-0.1.0-py3-none-any.whl\"]}'")
-    add_arguments(b, "tau", "tau_unit", "cut_plane_selection", "max_parts", "max_hull_vertices", "preprocessing",
-                  "wrap_alpha", "wrap_offset", "time_limit")
+    add_arguments(b, "tau", "tau_unit", "cut_plane_selection", "max_parts", "merge_parts", "max_hull_vertices",
+                  "preprocessing", "wrap_alpha", "wrap_offset", "time_limit")
     b.add_argument("--timeout", type=float, default=BATCH["timeout"],
                    help="per mesh process, killed after (s; 0: none)")
     b.add_argument("--formats", default=",".join(BATCH["formats"]), help="collision hull files: obj, stl or both")

@@ -25,7 +25,7 @@ MESH_EXTENSIONS = {".obj", ".ply", ".stl", ".off", ".3ds", ".dae", ".wrl", ".glt
 DEFAULTS = dict(options.DEFAULTS, timeout=1800.0, formats=["obj", "stl"], scale=1.0, density=1000.0, save_tree=False)
 
 # The options that change a mesh's outputs (a rerun with other values redoes the mesh).
-_OUTPUT_KEYS = ("tau", "tau_unit", "cut_plane_selection", "max_parts", "max_hull_vertices", "preprocessing",
+_OUTPUT_KEYS = ("tau", "tau_unit", "cut_plane_selection", "max_parts", "merge_parts", "max_hull_vertices", "preprocessing",
                 "wrap_alpha", "wrap_offset", "time_limit", "formats", "scale", "density", "save_tree")
 
 
@@ -67,8 +67,9 @@ def decompose_file(src, out_dir, opts):
     load()
     t0 = time.perf_counter()
     params = dict(tau=opts["tau"], tau_unit=opts["tau_unit"], cut_plane_selection=opts["cut_plane_selection"],
-                  max_parts=opts["max_parts"], output_hulls=True, max_hull_vertices=opts["max_hull_vertices"],
-                  time_limit=opts["time_limit"], wrap_offset=opts["wrap_offset"])
+                  max_parts=opts["max_parts"], merge_parts=opts["merge_parts"], output_hulls=True,
+                  max_hull_vertices=opts["max_hull_vertices"], time_limit=opts["time_limit"],
+                  wrap_offset=opts["wrap_offset"])
 
     def attempt(preprocessing, alpha):
         ms = pymeshlab.MeshSet()

@@ -6,12 +6,15 @@ DEFAULTS = dict(
     tau_unit="percent_of_size",
     cut_plane_selection="best",     # best | bisector | min_section
     max_parts=0,                    # 0: no limit
+    merge_parts=True,               # merge neighbouring parts while their union stays within tau
     max_hull_vertices=0,            # per collision hull; 0: the exact hull
     preprocessing="auto",           # as given if a valid solid, else welded, else alpha-wrapped
     wrap_alpha=1.0,                 # alpha wrap: alpha, % of the size
     wrap_offset=0.1,                # alpha wrap: offset, % of the size
     time_limit=0.0,                 # seconds in the core; 0: none
 )
+
+import argparse
 
 # Help text per option, shared by the subcommands that take it.
 HELP = dict(
@@ -20,6 +23,8 @@ HELP = dict(
     tau_unit="unit of --tau",
     cut_plane_selection="how the plane through the most concave notch is chosen",
     max_parts="stop after this many parts (0: no limit; some parts may then exceed tau)",
+    merge_parts="merge neighbouring parts while their union stays within tau (--no-merge-parts: the cut "
+                "tree's leaves as they are)",
     max_hull_vertices="per collision hull (0: exact hulls; 64 suits engines that cap hull sizes)",
     preprocessing="auto: as given if the mesh is a valid solid, else welded, else alpha-wrapped; alpha_wrap: "
                   "always wrapped; none: refuse what is not a closed solid",
@@ -39,6 +44,8 @@ def add_arguments(parser, *names):
         kw = dict(default=default, help=HELP[name])
         if name in CHOICES:
             kw["choices"] = CHOICES[name]
+        elif isinstance(default, bool):
+            kw["action"] = argparse.BooleanOptionalAction
         elif not isinstance(default, str):
             kw["type"] = type(default)
         parser.add_argument("--" + name.replace("_", "-"), **kw)

@@ -27,7 +27,7 @@ int main(int argc, char** argv)
 		acd::Decomposition d = acd::decompose(s, o);
 		double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 		std::printf("faces %zu  tau %.6g  parts %zu  max concavity %.6g  time %.3f s\n", m.F.size(), o.tau,
-		            d.leaves().size(), d.max_leaf_concavity(), secs);
+		            d.parts().size(), d.max_part_concavity(), secs);
 	}
 	catch (const std::exception& e) {
 		std::printf("error: %s\n", e.what());

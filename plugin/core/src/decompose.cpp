@@ -1,5 +1,6 @@
 #include "acd/decompose.h"
 #include "acd/hull_reach.h"
+#include "acd/merge.h"
 #include "acd/parallel.h"
 #include "recursion.h"
 
@@ -182,6 +183,7 @@ std::vector<Plane> candidate_planes(const TriMesh& m, const Topology& topo, cons
 	const PoseFrame& frame = rep.frame;
 	double          best = -1;
 	Vec3            edge = Vec3::Zero(), bis = Vec3::Zero(), mid = Vec3::Zero();
+	std::array<Vec3, 2> faces{Vec3::Zero(), Vec3::Zero()};
 	for (int f = 0; f < (int) m.F.size(); ++f) {
 		// Only faces around r matter; scanning is O(n) once per cut.
 		int k = -1;
@@ -200,15 +202,19 @@ std::vector<Plane> candidate_planes(const TriMesh& m, const Topology& topo, cons
 			const double excess = (n1.cross(n2)).norm() * (b - a).norm();   // sharper and longer first
 			const double tie    = 1e-9 * std::max(best, excess);
 			if (excess > best + tie || (excess >= best - tie && frame.before((a + b) / 2, mid))) {
-				best = excess;
-				edge = (b - a).normalized();
-				bis  = n1 + n2;
-				mid  = (a + b) / 2;
+				best  = excess;
+				edge  = (b - a).normalized();
+				bis   = n1 + n2;
+				mid   = (a + b) / 2;
+				faces = {n1, n2};
 			}
 		}
 	}
 	if (sel != CutPlaneSelection::MinSection && best > 0 && bis.norm() > 1e-12) out.push_back(through(p, edge.cross(bis)));
 	if (sel == CutPlaneSelection::Bisector && !out.empty()) return out;
+	// The notch's two faces extended: a CAD step, slot or flange is cut off along its own face.
+	if (sel == CutPlaneSelection::Best && best > 0)
+		for (const Vec3& n : faces) out.push_back(through(p, n));
 
 	// Planes containing the retraction direction (the bridge's normal), at evenly spread angles
 	// starting from the notch edge's direction; and the plane parallel to the bridge.
@@ -237,23 +243,32 @@ std::vector<int> Decomposition::leaves() const
 	return l;
 }
 
-double Decomposition::max_leaf_concavity() const
+std::vector<int> Decomposition::parts() const
+{
+	std::vector<int> p;
+	for (int i = 0; i < (int) nodes.size(); ++i)
+		if ((nodes[i].leaf() && nodes[i].part < 0) || !nodes[i].merged.empty()) p.push_back(i);
+	std::sort(p.begin(), p.end(), [&](int a, int b) { return nodes[a].path < nodes[b].path; });
+	return p;
+}
+
+double Decomposition::max_part_concavity() const
 {
 	double c = 0;
-	for (int i : leaves()) c = std::max(c, nodes[i].concavity);
+	for (int i : parts()) c = std::max(c, nodes[i].concavity);
 	return c;
 }
 
 double Decomposition::max_hull_distance() const
 {
 	double c = 0;
-	for (int i : leaves()) c = std::max(c, nodes[i].hull_distance);
+	for (int i : parts()) c = std::max(c, nodes[i].hull_distance);
 	return c;
 }
 
 bool Decomposition::tau_convex() const
 {
-	for (int i : leaves()) {
+	for (int i : parts()) {
 		const Node& n = nodes[i];
 		// 1% of tau is the slack the reach is refined to; the rest is rounding.
 		if (n.uncut || n.concavity > tau || n.hull_distance_bound > 1.01 * tau * (1 + 1e-9)) return false;
@@ -620,6 +635,7 @@ Decomposition decompose(const Solid& solid, const DecomposeOptions& opt)
 	DecomposeOptions o = opt;
 	o.tau /= s;
 	Decomposition D = Driver(o).run(unit);
+	if (o.merge_parts) merge_parts(D, o.tau, o.progress);
 	D.tau = opt.tau;
 	for (Node& n : D.nodes) {
 		for (Vec3& p : n.mesh.V) p = p * s + c;

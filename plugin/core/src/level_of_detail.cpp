@@ -1,6 +1,7 @@
 // Level of detail from a finished tree, and a subtree's solid rebuilt from its leaves.
 #include "acd/decompose.h"
 #include "acd/hull_reach.h"
+#include "rims.h"
 
 #include <algorithm>
 #include <cmath>
@@ -12,7 +13,7 @@ namespace acd {
 
 namespace {
 
-std::vector<int> level_where(const Decomposition& D, const std::function<bool(int)>& whole)
+std::vector<int> level_where(const Decomposition& D, const std::function<bool(int)>& whole, bool merged)
 {
 	std::vector<int> out, stack{0};
 	while (!stack.empty()) {
@@ -21,6 +22,15 @@ std::vector<int> level_where(const Decomposition& D, const std::function<bool(in
 		if (D.nodes[id].leaf() || whole(id)) out.push_back(id);
 		else stack.insert(stack.end(), {D.nodes[id].child[1], D.nodes[id].child[0]});
 	}
+	// A merged part stands for its leaves where the level keeps all of them as they are.
+	std::set<int> level(out.begin(), out.end());
+	for (int m = 0; m < (int) D.nodes.size() && merged; ++m) {
+		const std::vector<int>& leaves = D.nodes[m].merged;
+		if (leaves.empty() || !std::all_of(leaves.begin(), leaves.end(), [&](int l) { return level.count(l); })) continue;
+		for (int l : leaves) level.erase(l);
+		level.insert(m);
+	}
+	out.assign(level.begin(), level.end());
 	std::sort(out.begin(), out.end(), [&](int a, int b) { return D.nodes[a].path < D.nodes[b].path; });
 	return out;
 }
@@ -37,7 +47,7 @@ std::vector<int> level_of_detail(const Decomposition& D, double tau, int depth)
 	return level_where(D, [&](int id) {
 		const Node& n = D.nodes[id];
 		return depth >= 0 ? (int) n.path.size() - 1 >= depth : within_by_notches(D, n, tau);
-	});
+	}, depth < 0);
 }
 
 std::vector<int> level_of_detail_within(const Decomposition& D, double tau, const std::vector<TriMesh>& hull)
@@ -48,7 +58,7 @@ std::vector<int> level_of_detail_within(const Decomposition& D, double tau, cons
 		const ConvexHull h(id < (int) hull.size() && !hull[id].V.empty() ? hull[id].V : solid.V);
 		const HullReach  r = hull_reach(solid, h, std::vector<char>(h.facets(), 1), tau, 0.01 * tau);
 		return r.upper <= 1.01 * tau;
-	});
+	}, true);
 }
 
 namespace {
@@ -97,80 +107,11 @@ TriMesh weld_without_caps(const Decomposition& D, const std::vector<int>& leaves
 	return all;
 }
 
-std::set<std::pair<int, int>> directed_edges(const TriMesh& m)
-{
-	std::set<std::pair<int, int>> directed;
-	for (const Tri& t : m.F)
-		for (int k = 0; k < 3; ++k) directed.insert({t[k], t[(k + 1) % 3]});
-	return directed;
-}
-
-// Rims: a later cut on one side split a rim edge there; the other side's edge (b -> a, unmatched)
-// gets the rim vertices lying on it, and its face is fanned out.
-void close_rims(TriMesh& all, double eps)
-{
-	std::set<std::pair<int, int>> directed = directed_edges(all);
-	std::set<int>                 rim;
-	for (const auto& [a, b] : directed)
-		if (!directed.count({b, a})) rim.insert(a), rim.insert(b);
-	std::vector<int> rim_v(rim.begin(), rim.end());
-	for (int pass = 0; pass < 8 && !rim_v.empty(); ++pass) {
-		bool             changed = false;
-		std::vector<Tri> faces;
-		for (const Tri& t : all.F) {
-			int k = 0, w = -1;
-			for (; k < 3 && w < 0; ++k) {
-				const int a = t[k], b = t[(k + 1) % 3];
-				if (directed.count({b, a})) continue;
-				const Vec3 ab   = all.V[b] - all.V[a];
-				double     best = 2;
-				for (int v : rim_v) {
-					if (v == a || v == b) continue;
-					const double s = (all.V[v] - all.V[a]).dot(ab) / ab.squaredNorm();
-					if (s <= 0 || s >= 1 || (all.V[a] + s * ab - all.V[v]).norm() > eps) continue;
-					if (s < best) best = s, w = v;   // the nearest to a first; later passes do the rest
-				}
-			}
-			if (w < 0) {
-				faces.push_back(t);
-				continue;
-			}
-			--k;   // edge k (a -> b) gets w: (a, w, c) and (w, b, c)
-			const int a = t[k], b = t[(k + 1) % 3], c = t[(k + 2) % 3];
-			faces.push_back({a, w, c});
-			faces.push_back({w, b, c});
-			changed = true;
-		}
-		all.F.swap(faces);
-		if (!changed) break;
-		directed = directed_edges(all);
-	}
-}
-
-// The vertices the faces use, renumbered in order of first use.
-TriMesh compacted(const TriMesh& all)
-{
-	TriMesh          out;
-	std::vector<int> id_new(all.V.size(), -1);
-	for (const Tri& t : all.F) {
-		Tri u;
-		for (int k = 0; k < 3; ++k) {
-			int& i = id_new[t[k]];
-			if (i < 0) {
-				i = (int) out.V.size();
-				out.V.push_back(all.V[t[k]]);
-			}
-			u[k] = i;
-		}
-		out.F.push_back(u);
-	}
-	return out;
-}
-
 } // namespace
 
 TriMesh rebuild_solid(const Decomposition& D, int id)
 {
+	if (!D.nodes[id].merged.empty()) return D.nodes[id].mesh;   // a merged part is kept whole
 	std::vector<int>   leaves;
 	std::vector<Plane> cuts;
 	subtree(D, id, leaves, cuts);

@@ -51,9 +51,11 @@ json node_json(const Node& n, int id, bool geometry)
 	          {"hole_cut", n.hole_cut}};
 	if (n.concavity > 0) o["notch"] = {n.notch.x(), n.notch.y(), n.notch.z()};
 	if (n.has_plane) o["plane"] = {{"normal", {n.plane.n.x(), n.plane.n.y(), n.plane.n.z()}}, {"offset", n.plane.d}};
+	if (!n.merged.empty()) o["merged"] = n.merged;
+	if (n.part >= 0) o["part"] = n.part;
 	if (geometry && !n.mesh.F.empty()) {
 		o["hull"] = mesh_json(ConvexHull(n.mesh.V).canonical_mesh());
-		if (n.leaf()) o["mesh"] = mesh_json(n.mesh);
+		if (n.leaf() || !n.merged.empty()) o["mesh"] = mesh_json(n.mesh);
 	}
 	return o;
 }
@@ -92,6 +94,7 @@ std::string tree_to_json(const Decomposition& D, bool geometry)
 	                   {"hole_cuts", D.hole_cuts},
 	                   {"kept_cavities", D.kept_cavities},
 	                   {"films_dropped", D.films_dropped},
+	                   {"merges", D.merges},
 	                   {"nodes", nodes}};
 	return root.dump();
 }
@@ -108,6 +111,7 @@ Decomposition tree_from_json(const std::string& text, std::vector<TriMesh>* hull
 	try {
 		D.tau           = root.value("tau", 0.0);
 		D.kept_cavities = root.value("kept_cavities", 0);
+		D.merges        = root.value("merges", 0);
 		if (hulls) hulls->assign(nodes.size(), TriMesh());
 		const int count = (int) nodes.size();
 		for (int i = 0; i < count; ++i) {
@@ -129,7 +133,12 @@ Decomposition tree_from_json(const std::string& text, std::vector<TriMesh>* hull
 				n.plane.n      = Vec3(nn.at(0).get<double>(), nn.at(1).get<double>(), nn.at(2).get<double>());
 				n.plane.d      = o["plane"].at("offset").get<double>();
 			}
-			if (n.leaf()) {
+			if (o.contains("merged")) n.merged = o["merged"].get<std::vector<int>>();
+			n.part = o.value("part", -1);
+			for (int l : n.merged)
+				if (l < 0 || l >= count) bad("has broken links.");
+			if (n.part >= count) bad("has broken links.");
+			if (n.leaf() || !n.merged.empty()) {
 				if (!o.contains("mesh")) bad("has no part geometry (write it with tree_file).");
 				n.mesh = mesh_from(o["mesh"]);
 			}

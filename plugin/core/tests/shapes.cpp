@@ -159,4 +159,12 @@ std::vector<Eigen::Vector2d> plus_shape()
 	return {{1, 0}, {2, 0}, {2, 1}, {3, 1}, {3, 2}, {2, 2}, {2, 3}, {1, 3}, {1, 2}, {0, 2}, {0, 1}, {1, 1}};
 }
 
+acd::Plane plane(Vec3 n, double d)
+{
+	acd::Plane p;
+	p.n = n.normalized();
+	p.d = d;
+	return p;
+}
+
 } // namespace shapes

@@ -18,4 +18,6 @@ TriMesh inverted(TriMesh m);
 std::vector<Eigen::Vector2d> l_shape();   // (0,0)-(2,0)-(2,1)-(1,1)-(1,2)-(0,2)
 std::vector<Eigen::Vector2d> u_shape();
 std::vector<Eigen::Vector2d> plus_shape();
+// The plane n.x = d, n normalized.
+acd::Plane plane(Vec3 n, double d);
 } // namespace shapes

@@ -9,7 +9,8 @@ namespace {
 Decomposition run(const TriMesh& m, double tau)
 {
 	DecomposeOptions o;
-	o.tau = tau;
+	o.tau         = tau;
+	o.merge_parts = false;   // the cut tree alone
 	return decompose(make_solid(m), o);
 }
 

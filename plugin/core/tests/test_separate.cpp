@@ -6,13 +6,7 @@ using namespace acd;
 
 namespace {
 
-Plane plane(Vec3 n, double d)
-{
-	Plane p;
-	p.n = n.normalized();
-	p.d = d;
-	return p;
-}
+using shapes::plane;
 
 // Exactly two closed solids, each on its side of the plane, holding the input's volume together.
 void check_split(const TriMesh& m, const Plane& pl, const Vec3& notch, double expect_first)

@@ -44,6 +44,7 @@ struct DecomposeOptions
 	HoleHandling      hole_handling = HoleHandling::BestPlane;
 	HoleOrder         hole_order = HoleOrder::First;
 	double            time_limit_seconds = 0; // 0 = none
+	bool              merge_parts = true;     // merge neighbouring parts while their union is tau-convex (merge.h)
 	// Called with a percentage and a short status; return false to cancel (throws Error(Cancelled)).
 	std::function<bool(int, const char*)> progress;
 };
@@ -66,7 +67,9 @@ struct Node
 	int         cavities = 0;      // closed inner shells in this node's solid
 	bool        hole_cut = false;  // the cut went through a cavity (hole_handling's plane)
 	TriMesh     mesh;              // the node's solid
-	bool        leaf() const { return child[0] < 0; }
+	std::vector<int> merged;       // a merged part (not in the cut tree): the leaves it unites, in path order
+	int         part = -1;         // a leaf united into a merged part: that part's node
+	bool        leaf() const { return child[0] < 0 && merged.empty(); }
 };
 
 struct Decomposition
@@ -79,11 +82,14 @@ struct Decomposition
 	int               kept_cavities = 0;   // cavities left in the parts (keep_cavities)
 	int               films_dropped = 0;   // zero-thickness films cut off parts no plane could split
 	double            film_volume = 0;     // the volume they held (rounding: near 0)
-	// Leaves in a stable order (by tree path).
+	int               merges = 0;          // neighbouring parts merged after the cuts
+	// The cut tree's leaves in a stable order (by tree path).
 	std::vector<int> leaves() const;
-	double           max_leaf_concavity() const;
-	double           max_hull_distance() const;   // over the leaves
-	// The certificate: every leaf within tau by both measures (its hull to 1% of tau), none left
+	// The parts: the leaves not merged and the merged parts, by their (first leaf's) path.
+	std::vector<int> parts() const;
+	double           max_part_concavity() const;
+	double           max_hull_distance() const;   // over the parts
+	// The certificate: every part within tau by both measures (its hull to 1% of tau), none left
 	// uncut, no cavity kept, no limit reached.
 	bool             tau_convex() const;
 };
@@ -91,7 +97,8 @@ struct Decomposition
 // Level of detail from a finished tree, without recomputing: the nodes where the tree is cut when a
 // piece may keep concavity up to `tau` (descend from the root while a node exceeds `tau`, holds a
 // cavity that is not kept, or stands for several disjoint solids), or, with depth >= 0, the nodes at
-// that depth (and leaves above it). Node ids in path order.
+// that depth (and leaves above it). Node ids in path order. By tau, a merged part replaces its leaves
+// where the level keeps all of them (at the tree's own tau: the decomposition's parts).
 std::vector<int> level_of_detail(const Decomposition& D, double tau, int depth = -1);
 
 // The same by tau, and a node inside the tree is taken whole only if its hull is also certified within

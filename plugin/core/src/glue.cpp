@@ -1,0 +1,217 @@
+#include "acd/glue.h"
+#include "rims.h"
+
+#include <CGAL/Exact_predicates_exact_constructions_kernel.h>
+#include <CGAL/intersections.h>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+
+namespace acd {
+
+namespace {
+
+// The 2D work is exact: a crossing of the two sides' edges is then the same point whichever side
+// computes it (rounded once, it is the same double), however shallow the crossing.
+using K     = CGAL::Exact_predicates_exact_constructions_kernel;
+using P2    = K::Point_2;
+using Poly2 = std::vector<P2>;   // convex, counter-clockwise
+
+// The part of convex q to the left of the line a -> b (or to its right).
+Poly2 clip(const Poly2& q, const P2& a, const P2& b, bool left)
+{
+	Poly2      out;
+	const auto side = [&](const P2& p) {
+		const CGAL::Orientation o = CGAL::orientation(a, b, p);
+		return left ? int(o) : -int(o);
+	};
+	for (size_t i = 0; i < q.size(); ++i) {
+		const P2 &c = q[i], &n = q[(i + 1) % q.size()];
+		const int sc = side(c), sn = side(n);
+		if (sc >= 0) out.push_back(c);
+		if (sc * sn < 0) {
+			const auto x = CGAL::intersection(K::Line_2(a, b), K::Segment_2(c, n));
+			if (const P2* p = x ? std::get_if<P2>(&*x) : nullptr) out.push_back(*p);
+		}
+	}
+	return out;
+}
+
+// Area and perimeter, rounded (only to tell slivers).
+double area(const Poly2& q)
+{
+	double a = 0;
+	for (size_t i = 0; i < q.size(); ++i) {
+		const P2 &p = q[i], &r = q[(i + 1) % q.size()];
+		a += CGAL::to_double(p.x()) * CGAL::to_double(r.y()) - CGAL::to_double(p.y()) * CGAL::to_double(r.x());
+	}
+	return a / 2;
+}
+
+double perimeter(const Poly2& q)
+{
+	double p = 0;
+	for (size_t i = 0; i < q.size(); ++i) p += std::sqrt(CGAL::to_double(CGAL::squared_distance(q[i], q[(i + 1) % q.size()])));
+	return p;
+}
+
+// q minus triangle s (counter-clockwise): the parts of q outside each of s's edges in turn.
+std::vector<Poly2> minus(const Poly2& q, const Poly2& s)
+{
+	std::vector<Poly2> out;
+	Poly2              in = q;
+	for (int k = 0; k < 3 && in.size() >= 3; ++k) {
+		const P2 &a = s[k], &b = s[(k + 1) % 3];
+		Poly2     outside = clip(in, a, b, false);
+		if (outside.size() >= 3) out.push_back(std::move(outside));
+		in = clip(in, a, b, true);
+	}
+	return out;
+}
+
+bool boxes_meet(const Poly2& a, const Poly2& b)
+{
+	Eigen::AlignedBox2d A, B;
+	for (const P2& p : a) A.extend(Eigen::Vector2d(CGAL::to_double(p.x()), CGAL::to_double(p.y())));
+	for (const P2& p : b) B.extend(Eigen::Vector2d(CGAL::to_double(p.x()), CGAL::to_double(p.y())));
+	return A.intersects(B);
+}
+
+struct Face
+{
+	Tri  t;
+	int  from = 0;       // 0: a, 1: b
+	bool dropped = false;
+};
+
+// The solids' faces on one plane, cut against each other.
+class PlaneSeam
+{
+public:
+	PlaneSeam(std::vector<Vec3>& V, const Plane& pl, double eps) : V(V), pl(pl), eps(eps)
+	{
+		u = pl.n.unitOrthogonal();
+		w = pl.n.cross(u);
+	}
+
+	void cut(std::vector<Face>& faces)
+	{
+		std::vector<int> on[2];
+		for (int f = 0; f < (int) faces.size(); ++f) {
+			bool in = !faces[f].dropped;
+			for (int v : faces[f].t) in = in && std::abs(pl.eval(V[v])) <= eps;
+			if (in) on[faces[f].from].push_back(f);
+		}
+		if (on[0].empty() || on[1].empty()) return;
+		std::map<int, Poly2> tri;   // each face on the plane in 2D, as it is oriented
+		for (int s = 0; s < 2; ++s)
+			for (int f : on[s]) tri[f] = flat(faces[f].t);
+		std::vector<Face> added;
+		for (int s = 0; s < 2; ++s)
+			for (int f : on[s]) {
+				std::vector<int> others;
+				for (int g : on[1 - s])
+					if (facing(faces[f].t) != facing(faces[g].t) && boxes_meet(tri[f], tri[g])) others.push_back(g);
+				if (others.empty()) continue;
+				std::vector<Poly2> left{ccw(tri[f])};
+				for (int g : others) {
+					const Poly2        cut = ccw(tri[g]);
+					std::vector<Poly2> next;
+					for (const Poly2& q : left)
+						for (Poly2& r : boxes_meet(q, cut) ? minus(q, cut) : std::vector<Poly2>{q})
+							if (area(r) > eps * perimeter(r)) next.push_back(std::move(r));
+					left.swap(next);
+				}
+				const bool turned = area(tri[f]) < 0;
+				for (const Poly2& q : left) fan(q, turned, faces[f].from, added);
+				faces[f].dropped = true;
+			}
+		for (Face& f : added) faces.push_back(f);
+	}
+
+private:
+	std::vector<Vec3>&              V;
+	const Plane                     pl;
+	const double                    eps;
+	Vec3                            u, w;
+	std::map<std::pair<double, double>, int> at;   // plane points made so far, by their 2D position
+
+	bool facing(const Tri& t) const { return pl.n.dot((V[t[1]] - V[t[0]]).cross(V[t[2]] - V[t[0]])) > 0; }
+
+	Poly2 flat(const Tri& t)
+	{
+		Poly2 q;
+		for (int v : t) {
+			const double x = u.dot(V[v]), y = w.dot(V[v]);
+			at.emplace(std::make_pair(x, y), v);
+			q.emplace_back(x, y);
+		}
+		return q;
+	}
+
+	static Poly2 ccw(Poly2 q)
+	{
+		if (area(q) < 0) std::reverse(q.begin(), q.end());
+		return q;
+	}
+
+	// The vertex at 2D point p: a vertex of the solids there (the same doubles, or within eps), or a
+	// new one lifted onto the plane.
+	int vertex(const P2& e)
+	{
+		const double x = CGAL::to_double(CGAL::exact(e.x())), y = CGAL::to_double(CGAL::exact(e.y()));
+		const auto   it = at.find({x, y});
+		if (it != at.end()) return it->second;
+		for (const auto& [q, v] : at)
+			if (std::hypot(q.first - x, q.second - y) <= eps) return v;
+		V.push_back(pl.n * pl.d + x * u + y * w);
+		at.emplace(std::make_pair(x, y), (int) V.size() - 1);
+		return (int) V.size() - 1;
+	}
+
+	void fan(const Poly2& q, bool turned, int from, std::vector<Face>& out)
+	{
+		std::vector<int> id;
+		for (const P2& p : q) {
+			const int v = vertex(p);
+			if (id.empty() || (v != id.back() && v != id.front())) id.push_back(v);
+		}
+		for (size_t k = 1; k + 1 < id.size(); ++k) {
+			if (id[k] == id[0] || id[k + 1] == id[0] || id[k] == id[k + 1]) continue;   // a pinched sliver
+			Face f;
+			f.t    = turned ? Tri{id[0], id[k + 1], id[k]} : Tri{id[0], id[k], id[k + 1]};
+			f.from = from;
+			out.push_back(f);
+		}
+	}
+};
+
+} // namespace
+
+TriMesh glue(const TriMesh& a, const TriMesh& b, const std::vector<Plane>& planes, double eps)
+{
+	// Weld: vertices the cuts shared are the same doubles on both sides.
+	std::vector<Vec3>                    V;
+	std::map<std::array<double, 3>, int> at;
+	std::vector<Face>                    faces;
+	for (int s = 0; s < 2; ++s) {
+		const TriMesh&   m = s ? b : a;
+		std::vector<int> id(m.V.size());
+		for (size_t v = 0; v < m.V.size(); ++v) {
+			auto [it, fresh] = at.emplace(std::array<double, 3>{m.V[v].x(), m.V[v].y(), m.V[v].z()}, (int) V.size());
+			if (fresh) V.push_back(m.V[v]);
+			id[v] = it->second;
+		}
+		for (const Tri& t : m.F) faces.push_back({{id[t[0]], id[t[1]], id[t[2]]}, s, false});
+	}
+	for (const Plane& pl : planes) PlaneSeam(V, pl, eps).cut(faces);
+	TriMesh all;
+	all.V = std::move(V);
+	for (const Face& f : faces)
+		if (!f.dropped) all.F.push_back(f.t);
+	close_rims(all, eps);
+	return compacted(all);
+}
+
+} // namespace acd

@@ -1,0 +1,350 @@
+// The merge stage (merge.h): neighbours from the cuts' caps, each neighbouring pair's union scored by
+// the cuts' own certificate, the least concave union merged first.
+#include "acd/merge.h"
+#include "acd/hull_reach.h"
+#include "acd/parallel.h"
+#include "acd/glue.h"
+
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/convex_hull_3.h>
+
+#include <algorithm>
+#include <map>
+#include <cmath>
+#include <optional>
+#include <queue>
+#include <set>
+
+namespace acd {
+
+namespace {
+
+using Tri2 = std::array<Eigen::Vector2d, 3>;
+
+// The vertices of the points' convex hull (far fewer than a part's, so the hull of two parts' unions
+// is quick to build from them).
+std::vector<Vec3> extreme_points(const std::vector<Vec3>& pts)
+{
+	using K = CGAL::Exact_predicates_inexact_constructions_kernel;
+	std::vector<K::Point_3> in, out;
+	for (const Vec3& p : pts) in.emplace_back(p.x(), p.y(), p.z());
+	CGAL::extreme_points_3(in, std::back_inserter(out));
+	std::vector<Vec3> e;
+	for (const K::Point_3& p : out) e.emplace_back(p.x(), p.y(), p.z());
+	std::sort(e.begin(), e.end(), [](const Vec3& a, const Vec3& b) { return std::lexicographical_compare(a.data(), a.data() + 3, b.data(), b.data() + 3); });
+	return e;
+}
+
+// The faces of `m` lying on plane `pl` (within eps), in the plane's frame (u, w).
+std::vector<Tri2> cap_on(const TriMesh& m, const Plane& pl, const Vec3& u, const Vec3& w, double eps)
+{
+	std::vector<Tri2> out;
+	for (const Tri& t : m.F) {
+		bool on = true;
+		for (int v : t) on = on && std::abs(pl.eval(m.V[v])) <= eps;
+		if (!on) continue;
+		Tri2 q;
+		for (int k = 0; k < 3; ++k) q[k] = {u.dot(m.V[t[k]]), w.dot(m.V[t[k]])};
+		out.push_back(q);
+	}
+	return out;
+}
+
+// Two triangles of one plane share area: no edge direction of either separates them by less than
+// `margin` of overlap (triangles meeting at an edge or a corner do not).
+bool overlap(const Tri2& a, const Tri2& b, double margin)
+{
+	for (const Tri2* t : {&a, &b})
+		for (int k = 0; k < 3; ++k) {
+			const Eigen::Vector2d e = (*t)[(k + 1) % 3] - (*t)[k];
+			const Eigen::Vector2d n = Eigen::Vector2d(-e.y(), e.x());
+			if (!(n.norm() > 0)) return false;
+			double lo[2] = {INFINITY, INFINITY}, hi[2] = {-INFINITY, -INFINITY};
+			for (int s = 0; s < 2; ++s)
+				for (const Eigen::Vector2d& p : s ? b : a) {
+					const double x = n.dot(p) / n.norm();
+					lo[s] = std::min(lo[s], x), hi[s] = std::max(hi[s], x);
+				}
+			if (std::min(hi[0], hi[1]) - std::max(lo[0], lo[1]) <= margin) return false;
+		}
+	return true;
+}
+
+bool caps_overlap(const std::vector<Tri2>& a, const std::vector<Tri2>& b, double margin)
+{
+	for (const Tri2& s : a)
+		for (const Tri2& t : b)
+			if (overlap(s, t, margin)) return true;
+	return false;
+}
+
+std::vector<int> leaves_below(const Decomposition& D, int id)
+{
+	std::vector<int> out, stack{id};
+	while (!stack.empty()) {
+		const Node& n = D.nodes[stack.back()];
+		const int   k = stack.back();
+		stack.pop_back();
+		if (n.leaf()) out.push_back(k);
+		else stack.insert(stack.end(), {n.child[1], n.child[0]});
+	}
+	return out;
+}
+
+// A part while merging: the leaves it unites, its solid and its measures.
+struct Group
+{
+	std::vector<int> leaves;   // node ids, path order
+	TriMesh          mesh;
+	std::vector<Vec3> extreme; // the vertices of its hull
+	double           concavity = 0, reach = 0, bound = 0, volume = 0;
+	int              notch_count = 0;
+	Vec3             notch = Vec3::Zero();
+	bool             alive = true;
+};
+
+struct Candidate
+{
+	int   a = -1, b = -1;   // groups
+	Group u;                 // their union
+};
+
+class Merger
+{
+public:
+	Merger(Decomposition& D, double tau, const std::function<bool(int, const char*)>& progress)
+	    : D(D), tau(tau), eps(1e-9 * extent(D.nodes[0].mesh.V)), progress(progress), heap(Later{this})
+	{
+	}
+
+	int run()
+	{
+		start_groups();
+		start_neighbours();
+		std::vector<std::pair<int, int>> pairs;
+		for (int a = 0; a < (int) groups.size(); ++a)
+			for (int b : nbr[a])
+				if (a < b) pairs.push_back({a, b});
+		score(pairs);
+		greedy();
+		record();
+		return merges;
+	}
+
+private:
+	Decomposition&                                  D;
+	const double                                    tau, eps;
+	const std::function<bool(int, const char*)>&    progress;
+	std::vector<Group>                              groups;
+	std::vector<std::set<int>>                      nbr;
+	std::map<std::pair<int, int>, int>              contact;   // neighbouring leaves -> the cut between them
+	std::vector<Candidate>                          pool;
+	int                                             merges = 0;
+	static constexpr int kPrefilterEvaluations = 2000;   // distance queries per pair before its union is built
+
+	// The least concave union first; ties by the groups' first leaves' paths (a pose-free order).
+	struct Later
+	{
+		const Merger* m;
+		bool          operator()(int i, int j) const
+		{
+			const Candidate &x = m->pool[i], &y = m->pool[j];
+			if (x.u.concavity != y.u.concavity) return x.u.concavity > y.u.concavity;
+			if (x.u.reach != y.u.reach) return x.u.reach > y.u.reach;
+			return m->key(x) > m->key(y);
+		}
+	};
+	std::priority_queue<int, std::vector<int>, Later> heap;
+
+	std::pair<std::string, std::string> key(const Candidate& c) const
+	{
+		return {D.nodes[groups[c.a].leaves[0]].path, D.nodes[groups[c.b].leaves[0]].path};
+	}
+
+	void start_groups()
+	{
+		for (int l : D.leaves()) {
+			const Node& n = D.nodes[l];
+			Group       g;
+			g.leaves      = {l};
+			g.mesh        = n.mesh;
+			g.concavity   = n.concavity;
+			g.reach       = n.hull_distance;
+			g.bound       = n.hull_distance_bound;
+			g.volume      = n.volume;
+			g.notch_count = n.notch_count;
+			g.notch       = n.notch;
+			// Only certified parts merge: an uncut leaf or one holding a kept cavity stays as it is.
+			g.alive = !n.uncut && n.cavities == 0 && certified(g);
+			groups.push_back(std::move(g));
+		}
+		parallel_for(groups.size(), [&](size_t i) {
+			if (groups[i].alive) groups[i].extreme = extreme_points(groups[i].mesh.V);
+		});
+	}
+
+	bool certified(const Group& g) const { return g.concavity <= tau && g.bound <= 1.01 * tau * (1 + 1e-9); }
+
+	void start_neighbours()
+	{
+		nbr.assign(groups.size(), {});
+		std::vector<int> index(D.nodes.size(), -1);
+		for (int g = 0; g < (int) groups.size(); ++g) index[groups[g].leaves[0]] = g;
+		for (const LeafContact& c : neighbouring_leaves(D)) {
+			contact[{c.a, c.b}] = c.cut;
+			const int ga = index[c.a], gb = index[c.b];
+			if (!groups[ga].alive || !groups[gb].alive) continue;
+			nbr[ga].insert(gb);
+			nbr[gb].insert(ga);
+		}
+	}
+
+	// The union of groups a and b if it passes the certificate.
+	std::optional<Group> unite(int a, int b) const
+	{
+		const Group &A = groups[a], &B = groups[b];
+		// Outside both parts the distance to their union is the distance to the nearer part, so the
+		// union's hull reach is measured without the union: most pairs fail here, cheaply.
+		// A coarse search (10% of tau, a bounded effort) finds most such reaches; the union's own measure
+		// settles the rest.
+		TriMesh both = A.mesh;
+		append(both, B.mesh);
+		std::vector<Vec3> corners = A.extreme;
+		corners.insert(corners.end(), B.extreme.begin(), B.extreme.end());
+		const ConvexHull h(corners);
+		if (hull_reach(both, h, std::vector<char>(h.facets(), 1), tau, 0.1 * tau, 0.1, kPrefilterEvaluations).lower > tau)
+			return std::nullopt;
+		// The cuts they touch along, where their faces are glued.
+		std::set<int> cuts;
+		for (int x : A.leaves)
+			for (int y : B.leaves) {
+				const auto it = contact.find({std::min(x, y), std::max(x, y)});
+				if (it != contact.end()) cuts.insert(it->second);
+			}
+		std::vector<Plane> planes;
+		for (int c : cuts) planes.push_back(D.nodes[c].plane);
+		Solid s;
+		try {
+			s = make_solid(glue(A.mesh, B.mesh, planes, eps));
+		}
+		catch (const Error&) {   // the glued surface is not a clean solid (a seam left open)
+			return std::nullopt;
+		}
+		if (s.shells != 1 || s.cavities > 0 || s.self_intersections > 0) return std::nullopt;
+		if (std::abs(s.volume - A.volume - B.volume) > 1e-6 * (A.volume + B.volume)) return std::nullopt;
+		const Topology        topo(s.mesh);
+		const ConvexHull      hull(s.mesh.V);
+		const ConcavityReport rep = measure_concavity(s.mesh, topo, hull, tau);
+		Group                 g;
+		g.concavity   = rep.max_concavity;
+		g.reach       = rep.hull_reach;
+		g.bound       = rep.hull_reach_bound;
+		g.volume      = s.volume;
+		g.notch_count = rep.notches;
+		if (rep.max_vertex >= 0) g.notch = s.mesh.V[rep.max_vertex];
+		if (!certified(g)) return std::nullopt;
+		g.mesh    = std::move(s.mesh);
+		g.extreme = extreme_points(corners);
+		std::merge(A.leaves.begin(), A.leaves.end(), B.leaves.begin(), B.leaves.end(), std::back_inserter(g.leaves),
+		           [&](int x, int y) { return D.nodes[x].path < D.nodes[y].path; });
+		return g;
+	}
+
+	// Unite the pairs (on all cores) and queue those that pass.
+	void score(const std::vector<std::pair<int, int>>& pairs)
+	{
+		std::vector<std::optional<Group>> u(pairs.size());
+		parallel_for(pairs.size(), [&](size_t i) { u[i] = unite(pairs[i].first, pairs[i].second); });
+		for (size_t i = 0; i < pairs.size(); ++i) {
+			if (!u[i]) continue;
+			pool.push_back({pairs[i].first, pairs[i].second, std::move(*u[i])});
+			heap.push((int) pool.size() - 1);
+		}
+	}
+
+	void greedy()
+	{
+		while (!heap.empty()) {
+			const int i = heap.top();
+			heap.pop();
+			const int a = pool[i].a, b = pool[i].b;
+			if (!groups[a].alive || !groups[b].alive) continue;   // one of them has merged since
+			groups[a].alive = groups[b].alive = false;
+			const int g = (int) groups.size();
+			groups.push_back(std::move(pool[i].u));
+			pool[i].u.mesh = TriMesh();
+			std::set<int> around;
+			for (int x : {a, b})
+				for (int n : nbr[x])
+					if (n != a && n != b) around.insert(n);
+			nbr.push_back(around);
+			std::vector<std::pair<int, int>> pairs;
+			for (int n : around) {
+				nbr[n].erase(a), nbr[n].erase(b), nbr[n].insert(g);
+				pairs.push_back({n, g});
+			}
+			++merges;
+			if (progress) {
+				char msg[96];
+				std::snprintf(msg, sizeof msg, "Merging neighbouring parts: %d merged", merges);
+				if (!progress(99, msg)) throw Error(Error::Cancelled, "The decomposition was cancelled.");
+			}
+			score(pairs);
+		}
+	}
+
+	// Each merged part becomes a node after the tree's, its leaves pointing to it.
+	void record()
+	{
+		for (Group& g : groups) {
+			if (!g.alive || g.leaves.size() < 2) continue;
+			Node n;
+			n.path          = D.nodes[g.leaves[0]].path + "+" + std::to_string(g.leaves.size() - 1);
+			n.merged        = g.leaves;
+			n.concavity     = g.concavity;
+			n.hull_distance = g.reach;
+			n.hull_distance_bound = g.bound;
+			n.volume        = g.volume;
+			n.notch_count   = g.notch_count;
+			n.notch         = g.notch;
+			n.mesh          = std::move(g.mesh);
+			const int id    = (int) D.nodes.size();
+			for (int l : g.leaves) D.nodes[l].part = id;
+			D.nodes.push_back(std::move(n));
+		}
+		D.merges = merges;
+	}
+};
+
+} // namespace
+
+std::vector<LeafContact> neighbouring_leaves(const Decomposition& D)
+{
+	std::vector<LeafContact> out;
+	const double eps = 1e-9 * extent(D.nodes[0].mesh.V);
+	for (const Node& n : D.nodes) {
+		if (!n.has_plane || n.solids) continue;
+		const Vec3                     u = n.plane.n.unitOrthogonal(), w = n.plane.n.cross(u);
+		std::vector<int>               side[2];
+		std::vector<std::vector<Tri2>> caps[2];
+		for (int s = 0; s < 2; ++s)
+			for (int l : leaves_below(D, n.child[s])) {
+				std::vector<Tri2> c = cap_on(D.nodes[l].mesh, n.plane, u, w, eps);
+				if (c.empty()) continue;
+				side[s].push_back(l);
+				caps[s].push_back(std::move(c));
+			}
+		for (size_t i = 0; i < side[0].size(); ++i)
+			for (size_t j = 0; j < side[1].size(); ++j)
+				if (caps_overlap(caps[0][i], caps[1][j], eps))
+					out.push_back({std::min(side[0][i], side[1][j]), std::max(side[0][i], side[1][j]), int(&n - D.nodes.data())});
+	}
+	return out;
+}
+
+int merge_parts(Decomposition& D, double tau, const std::function<bool(int, const char*)>& progress)
+{
+	return Merger(D, tau, progress).run();
+}
+
+} // namespace acd

@@ -1,0 +1,98 @@
+"""merge_parts: after the cuts, neighbouring parts are merged while their union stays within tau.
+
+Every merged decomposition is re-measured here, sharing no code with the core: parts closed and
+2-manifold, volumes summing to the input's, no overlap (interior samples of one part inside no other),
+each part's hull within tau (tests/hull_reach.py); the tree file's record of the merges is checked
+against the leaves' own meshes.
+"""
+import json
+
+import numpy as np
+import pymeshlab
+import pytest
+
+import pymeshlab_acd
+from conftest import add_mesh, is_closed_manifold, torus, volume
+from test_decompose import check_partition
+
+cad_solids = pytest.importorskip("cad_solids")
+pytest.importorskip("manifold3d")
+
+
+def solid(name):
+    return torus(R=2.0, r=0.5, nu=24, nv=12) if name == "torus" else cad_solids.make(name)
+
+
+def run(name, tau, merge, tree_file=None, **kw):
+    V, F = solid(name)
+    ms = pymeshlab.MeshSet()
+    pymeshlab_acd.load()
+    add_mesh(ms, V, F, name)
+    res, ids = pymeshlab_acd.decompose(ms, with_tree=False, tau=tau, merge_parts=merge,
+                                       tree_file=str(tree_file or ""), **kw)
+    return ms, res, ids
+
+
+@pytest.mark.parametrize("name,tau", [("keyway", 2.0), ("through_slot", 2.0), ("torus", 5.0), ("spur_gear", 2.0)])
+def test_merged_parts_are_an_exact_partition_within_tau(name, tau):
+    ms, res, ids = run(name, tau, merge=True)
+    _, cut, _ = run(name, tau, merge=False)
+    assert res["tau_convex"]
+    assert res["parts"] <= cut["parts"]
+    check_partition(ms, 0, ids, tau_abs=res["tau_model_units"], overlap_samples=10)
+    print(f"{name} tau {tau}%: {cut['parts']} cut leaves, {res['parts']} parts merged")
+
+
+def test_merging_makes_fewer_parts():
+    """A ring cut arc by arc at 5%: neighbouring arcs that are convex enough together are merged."""
+    _, merged, _ = run("torus", 5.0, merge=True)
+    _, cut, _ = run("torus", 5.0, merge=False)
+    assert merged["parts"] < cut["parts"]
+
+
+def test_stepped_shaft_in_at_most_four_parts():
+    """Three coaxial cylinders: at tau 2% with the default settings, one piece per cylinder or close."""
+    ms, res, ids = run("stepped_shaft", 2.0, merge=True)
+    assert res["parts"] <= 4
+    check_partition(ms, 0, ids, tau_abs=res["tau_model_units"], overlap_samples=10)
+
+
+def test_the_tree_records_which_leaves_each_part_unites(tmp_path):
+    tree = tmp_path / "tree.json"
+    ms, res, ids = run("torus", 5.0, merge=True, tree_file=tree)
+    nodes = json.loads(tree.read_text())["nodes"]
+    leaves = [i for i, n in enumerate(nodes) if n["leaf"]]
+    merged = [n for n in nodes if "merged" in n]
+    assert merged
+    seen = [l for n in merged for l in n["merged"]]
+    assert len(seen) == len(set(seen)) and set(seen) <= set(leaves)   # each leaf in one part at most
+    assert res["parts"] == len(leaves) - len(seen) + len(merged) == len(ids)
+    for i, n in enumerate(nodes):
+        if "merged" not in n:
+            continue
+        V = np.reshape(n["mesh"]["v"], (-1, 3))
+        F = np.reshape(n["mesh"]["f"], (-1, 3))
+        assert is_closed_manifold(F)
+        parts = [np.reshape(nodes[l]["mesh"]["v"], (-1, 3)) for l in n["merged"]]
+        faces = [np.reshape(nodes[l]["mesh"]["f"], (-1, 3)) for l in n["merged"]]
+        assert volume(V, F) == pytest.approx(sum(volume(v, f) for v, f in zip(parts, faces)), rel=1e-9)
+        assert all(nodes[l]["part"] == i for l in n["merged"])
+
+
+def test_level_of_detail_gives_the_merged_parts_at_the_trees_tau(tmp_path):
+    tree = tmp_path / "tree.json"
+    _, res, _ = run("torus", 5.0, merge=True, tree_file=tree)
+    ms = pymeshlab.MeshSet()
+    lod, ids = pymeshlab_acd.level_of_detail(ms, tree, tau=5.0)
+    assert lod["parts"] == res["parts"] == len(ids) and lod["open_parts"] == 0
+    V, F = solid("torus")
+    assert sum(volume(ms.mesh(i).vertex_matrix(), ms.mesh(i).face_matrix()) for i in ids) == pytest.approx(
+        volume(V, F), rel=1e-6)
+
+
+def test_merge_off_gives_the_cut_trees_leaves(tmp_path):
+    tree = tmp_path / "tree.json"
+    _, res, ids = run("torus", 5.0, merge=False, tree_file=tree)
+    nodes = json.loads(tree.read_text())["nodes"]
+    assert not any("merged" in n for n in nodes)
+    assert res["parts"] == sum(n["leaf"] for n in nodes)
