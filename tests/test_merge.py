@@ -96,3 +96,20 @@ def test_merge_off_gives_the_cut_trees_leaves(tmp_path):
     nodes = json.loads(tree.read_text())["nodes"]
     assert not any("merged" in n for n in nodes)
     assert res["parts"] == sum(n["leaf"] for n in nodes)
+
+
+def test_command_line_merges_unless_told_not_to(tmp_path):
+    import subprocess
+    import sys
+    V, F = solid("torus")
+    ms = pymeshlab.MeshSet()
+    add_mesh(ms, V, F)
+    ms.save_current_mesh(str(tmp_path / "ring.obj"))
+    parts = {}
+    for flag in ("--merge-parts", "--no-merge-parts"):
+        out = tmp_path / flag
+        p = subprocess.run([sys.executable, "-m", "pymeshlab_acd", "decompose", str(tmp_path / "ring.obj"), "--tau", "5",
+                            flag, "--out", str(out), "--no-progress"], capture_output=True, text=True, timeout=300)
+        assert p.returncode == 0, p.stderr
+        parts[flag] = json.loads((out / "summary.json").read_text())["parts"]
+    assert parts["--merge-parts"] < parts["--no-merge-parts"]

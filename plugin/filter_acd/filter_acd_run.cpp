@@ -261,6 +261,7 @@ FilterACD::decompose(const RichParameterList& par, MeshDocument& md, vcg::CallBa
 	    "hull %g from its part, %.2f s%s",
 	    idx, o.tau, d.max_part_concavity(), d.max_hull_distance(), secs,
 	    d.max_parts_reached ? " (max_parts reached: some parts exceed tau)" : "");
+	if (d.merges > 0) log("%d neighbouring parts merged after the cuts (their unions within tau)", d.merges);
 	if (uncut > 0) log("Warning: %d parts above tau could not be cut by any candidate plane", uncut);
 	if (d.films_dropped > 0)
 		log("%d zero-thickness films (volume %g) no plane could split were dropped from parts", d.films_dropped,
@@ -280,6 +281,7 @@ FilterACD::decompose(const RichParameterList& par, MeshDocument& md, vcg::CallBa
 		{"time_limit_reached", d.time_limit_reached},
 		{"uncut_parts", uncut},
 		{"films_dropped", d.films_dropped},
+		{"merges", d.merges},
 		{"tree_nodes", (int) d.nodes.size()},
 		{"alpha_wrapped", run.wrap_alpha > 0},
 		{"wrap_alpha_used", run.wrap_alpha},

@@ -212,8 +212,10 @@ std::vector<Plane> candidate_planes(const TriMesh& m, const Topology& topo, cons
 	}
 	if (sel != CutPlaneSelection::MinSection && best > 0 && bis.norm() > 1e-12) out.push_back(through(p, edge.cross(bis)));
 	if (sel == CutPlaneSelection::Bisector && !out.empty()) return out;
-	// The notch's two faces extended: a CAD step, slot or flange is cut off along its own face.
-	if (sel == CutPlaneSelection::Best && best > 0)
+	// The notch's two faces extended: a CAD step, slot or flange is cut off along its own face. Only
+	// at a sharp reflex edge (30 degrees or more from flat): on a smooth or wrapped surface the faces'
+	// planes are near-tangent slices.
+	if (sel == CutPlaneSelection::Best && best > 0 && faces[0].cross(faces[1]).norm() >= 0.5)
 		for (const Vec3& n : faces) out.push_back(through(p, n));
 
 	// Planes containing the retraction direction (the bridge's normal), at evenly spread angles

@@ -116,10 +116,10 @@ public:
 				if (others.empty()) continue;
 				std::vector<Poly2> left{ccw(tri[f])};
 				for (int g : others) {
-					const Poly2        cut = ccw(tri[g]);
+					const Poly2        covered = ccw(tri[g]);
 					std::vector<Poly2> next;
 					for (const Poly2& q : left)
-						for (Poly2& r : boxes_meet(q, cut) ? minus(q, cut) : std::vector<Poly2>{q})
+						for (Poly2& r : boxes_meet(q, covered) ? minus(q, covered) : std::vector<Poly2>{q})
 							if (area(r) > eps * perimeter(r)) next.push_back(std::move(r));
 					left.swap(next);
 				}

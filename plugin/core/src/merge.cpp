@@ -94,13 +94,10 @@ std::vector<int> leaves_below(const Decomposition& D, int id)
 // A part while merging: the leaves it unites, its solid and its measures.
 struct Group
 {
-	std::vector<int> leaves;   // node ids, path order
-	TriMesh          mesh;
-	std::vector<Vec3> extreme; // the vertices of its hull
-	double           concavity = 0, reach = 0, bound = 0, volume = 0;
-	int              notch_count = 0;
-	Vec3             notch = Vec3::Zero();
-	bool             alive = true;
+	std::vector<int>  leaves;    // node ids, path order
+	Node              part;      // its solid and measures, as the merged part's node will hold them
+	std::vector<Vec3> extreme;   // the vertices of its hull
+	bool              alive = true;
 };
 
 struct Candidate
@@ -149,8 +146,9 @@ private:
 		bool          operator()(int i, int j) const
 		{
 			const Candidate &x = m->pool[i], &y = m->pool[j];
-			if (x.u.concavity != y.u.concavity) return x.u.concavity > y.u.concavity;
-			if (x.u.reach != y.u.reach) return x.u.reach > y.u.reach;
+			const Node &X = x.u.part, &Y = y.u.part;
+			if (X.concavity != Y.concavity) return X.concavity > Y.concavity;
+			if (X.hull_distance != Y.hull_distance) return X.hull_distance > Y.hull_distance;
 			return m->key(x) > m->key(y);
 		}
 	};
@@ -166,24 +164,18 @@ private:
 		for (int l : D.leaves()) {
 			const Node& n = D.nodes[l];
 			Group       g;
-			g.leaves      = {l};
-			g.mesh        = n.mesh;
-			g.concavity   = n.concavity;
-			g.reach       = n.hull_distance;
-			g.bound       = n.hull_distance_bound;
-			g.volume      = n.volume;
-			g.notch_count = n.notch_count;
-			g.notch       = n.notch;
+			g.leaves = {l};
+			g.part   = n;
 			// Only certified parts merge: an uncut leaf or one holding a kept cavity stays as it is.
-			g.alive = !n.uncut && n.cavities == 0 && certified(g);
+			g.alive = !n.uncut && n.cavities == 0 && certified(n);
 			groups.push_back(std::move(g));
 		}
 		parallel_for(groups.size(), [&](size_t i) {
-			if (groups[i].alive) groups[i].extreme = extreme_points(groups[i].mesh.V);
+			if (groups[i].alive) groups[i].extreme = extreme_points(groups[i].part.mesh.V);
 		});
 	}
 
-	bool certified(const Group& g) const { return g.concavity <= tau && g.bound <= 1.01 * tau * (1 + 1e-9); }
+	bool certified(const Node& n) const { return n.concavity <= tau && n.hull_distance_bound <= 1.01 * tau * (1 + 1e-9); }
 
 	void start_neighbours()
 	{
@@ -207,8 +199,9 @@ private:
 		// union's hull reach is measured without the union: most pairs fail here, cheaply.
 		// A coarse search (10% of tau, a bounded effort) finds most such reaches; the union's own measure
 		// settles the rest.
-		TriMesh both = A.mesh;
-		append(both, B.mesh);
+		const Node &PA = A.part, &PB = B.part;
+		TriMesh     both = PA.mesh;
+		append(both, PB.mesh);
 		std::vector<Vec3> corners = A.extreme;
 		corners.insert(corners.end(), B.extreme.begin(), B.extreme.end());
 		const ConvexHull h(corners);
@@ -225,25 +218,26 @@ private:
 		for (int c : cuts) planes.push_back(D.nodes[c].plane);
 		Solid s;
 		try {
-			s = make_solid(glue(A.mesh, B.mesh, planes, eps));
+			s = make_solid(glue(PA.mesh, PB.mesh, planes, eps));
 		}
 		catch (const Error&) {   // the glued surface is not a clean solid (a seam left open)
 			return std::nullopt;
 		}
 		if (s.shells != 1 || s.cavities > 0 || s.self_intersections > 0) return std::nullopt;
-		if (std::abs(s.volume - A.volume - B.volume) > 1e-6 * (A.volume + B.volume)) return std::nullopt;
+		if (std::abs(s.volume - PA.volume - PB.volume) > 1e-6 * (PA.volume + PB.volume)) return std::nullopt;
 		const Topology        topo(s.mesh);
 		const ConvexHull      hull(s.mesh.V);
 		const ConcavityReport rep = measure_concavity(s.mesh, topo, hull, tau);
 		Group                 g;
-		g.concavity   = rep.max_concavity;
-		g.reach       = rep.hull_reach;
-		g.bound       = rep.hull_reach_bound;
-		g.volume      = s.volume;
-		g.notch_count = rep.notches;
-		if (rep.max_vertex >= 0) g.notch = s.mesh.V[rep.max_vertex];
-		if (!certified(g)) return std::nullopt;
-		g.mesh    = std::move(s.mesh);
+		Node&                 n = g.part;
+		n.concavity           = rep.max_concavity;
+		n.hull_distance       = rep.hull_reach;
+		n.hull_distance_bound = rep.hull_reach_bound;
+		n.volume              = s.volume;
+		n.notch_count         = rep.notches;
+		if (rep.max_vertex >= 0) n.notch = s.mesh.V[rep.max_vertex];
+		if (!certified(n)) return std::nullopt;
+		n.mesh    = std::move(s.mesh);
 		g.extreme = extreme_points(corners);
 		std::merge(A.leaves.begin(), A.leaves.end(), B.leaves.begin(), B.leaves.end(), std::back_inserter(g.leaves),
 		           [&](int x, int y) { return D.nodes[x].path < D.nodes[y].path; });
@@ -268,11 +262,12 @@ private:
 			const int i = heap.top();
 			heap.pop();
 			const int a = pool[i].a, b = pool[i].b;
+			Group u = std::move(pool[i].u);
+			pool[i].u = Group();
 			if (!groups[a].alive || !groups[b].alive) continue;   // one of them has merged since
-			groups[a].alive = groups[b].alive = false;
+			for (int x : {a, b}) groups[x] = Group{groups[x].leaves, Node(), {}, false};
 			const int g = (int) groups.size();
-			groups.push_back(std::move(pool[i].u));
-			pool[i].u.mesh = TriMesh();
+			groups.push_back(std::move(u));
 			std::set<int> around;
 			for (int x : {a, b})
 				for (int n : nbr[x])
@@ -298,17 +293,10 @@ private:
 	{
 		for (Group& g : groups) {
 			if (!g.alive || g.leaves.size() < 2) continue;
-			Node n;
-			n.path          = D.nodes[g.leaves[0]].path + "+" + std::to_string(g.leaves.size() - 1);
-			n.merged        = g.leaves;
-			n.concavity     = g.concavity;
-			n.hull_distance = g.reach;
-			n.hull_distance_bound = g.bound;
-			n.volume        = g.volume;
-			n.notch_count   = g.notch_count;
-			n.notch         = g.notch;
-			n.mesh          = std::move(g.mesh);
-			const int id    = (int) D.nodes.size();
+			Node& n      = g.part;
+			n.path       = D.nodes[g.leaves[0]].path + "+" + std::to_string(g.leaves.size() - 1);
+			n.merged     = g.leaves;
+			const int id = (int) D.nodes.size();
 			for (int l : g.leaves) D.nodes[l].part = id;
 			D.nodes.push_back(std::move(n));
 		}
