@@ -2,6 +2,9 @@
 #include "rims.h"
 
 #include <CGAL/Exact_predicates_exact_constructions_kernel.h>
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Polygon_mesh_processing/repair_degeneracies.h>
+#include <CGAL/Surface_mesh.h>
 #include <CGAL/intersections.h>
 
 #include <algorithm>
@@ -38,7 +41,15 @@ Poly2 clip(const Poly2& q, const P2& a, const P2& b, bool left)
 	return out;
 }
 
-// Area and perimeter, rounded (only to tell slivers).
+// Twice the area, exact: a piece the clipping pinched to nothing has none.
+K::FT exact_area(const Poly2& q)
+{
+	K::FT a = 0;
+	for (size_t i = 1; i + 1 < q.size(); ++i) a += CGAL::area(q[0], q[i], q[i + 1]);
+	return a;
+}
+
+// Area, rounded (only its sign is used: the orientation a face had).
 double area(const Poly2& q)
 {
 	double a = 0;
@@ -49,12 +60,6 @@ double area(const Poly2& q)
 	return a / 2;
 }
 
-double perimeter(const Poly2& q)
-{
-	double p = 0;
-	for (size_t i = 0; i < q.size(); ++i) p += std::sqrt(CGAL::to_double(CGAL::squared_distance(q[i], q[(i + 1) % q.size()])));
-	return p;
-}
 
 // q minus triangle s (counter-clockwise): the parts of q outside each of s's edges in turn.
 std::vector<Poly2> minus(const Poly2& q, const Poly2& s)
@@ -120,7 +125,7 @@ public:
 					std::vector<Poly2> next;
 					for (const Poly2& q : left)
 						for (Poly2& r : boxes_meet(q, covered) ? minus(q, covered) : std::vector<Poly2>{q})
-							if (area(r) > eps * perimeter(r)) next.push_back(std::move(r));
+							if (exact_area(r) > 0) next.push_back(std::move(r));
 					left.swap(next);
 				}
 				const bool turned = area(tri[f]) < 0;
@@ -187,6 +192,30 @@ private:
 	}
 };
 
+// Slivers of the two sides' seams a rounding error wide are kept by the exact clipping and collapse
+// to zero area once rounded: CGAL's repair (exact predicates) collapses or flips them away.
+TriMesh without_needles(const TriMesh& m)
+{
+	using IK = CGAL::Exact_predicates_inexact_constructions_kernel;
+	using SM = CGAL::Surface_mesh<IK::Point_3>;
+	SM                           sm;
+	std::vector<SM::Vertex_index> id;
+	for (const Vec3& p : m.V) id.push_back(sm.add_vertex(IK::Point_3(p.x(), p.y(), p.z())));
+	for (const Tri& t : m.F)
+		if (sm.add_face(id[t[0]], id[t[1]], id[t[2]]) == SM::null_face()) return m;   // not a manifold surface
+	CGAL::Polygon_mesh_processing::remove_degenerate_faces(sm);
+	sm.collect_garbage();
+	TriMesh out;
+	for (auto v : sm.vertices()) out.V.emplace_back(sm.point(v).x(), sm.point(v).y(), sm.point(v).z());
+	for (auto f : sm.faces()) {
+		Tri t;
+		int k = 0;
+		for (auto v : CGAL::vertices_around_face(sm.halfedge(f), sm)) t[std::min(k++, 2)] = (int) v;
+		if (k == 3) out.F.push_back(t);
+	}
+	return out;
+}
+
 } // namespace
 
 TriMesh glue(const TriMesh& a, const TriMesh& b, const std::vector<Plane>& planes, double eps)
@@ -211,7 +240,7 @@ TriMesh glue(const TriMesh& a, const TriMesh& b, const std::vector<Plane>& plane
 	for (const Face& f : faces)
 		if (!f.dropped) all.F.push_back(f.t);
 	close_rims(all, eps);
-	return compacted(all);
+	return without_needles(compacted(all));
 }
 
 } // namespace acd
