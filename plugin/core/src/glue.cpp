@@ -41,7 +41,7 @@ Poly2 clip(const Poly2& q, const P2& a, const P2& b, bool left)
 	return out;
 }
 
-// Twice the area, exact: a piece the clipping pinched to nothing has none.
+// The area, exact (signed): a piece the clipping pinched to nothing has none.
 K::FT exact_area(const Poly2& q)
 {
 	K::FT a = 0;
