@@ -103,11 +103,8 @@ public:
 	void cut(std::vector<Face>& faces)
 	{
 		std::vector<int> on[2];
-		for (int f = 0; f < (int) faces.size(); ++f) {
-			bool in = !faces[f].dropped;
-			for (int v : faces[f].t) in = in && std::abs(pl.eval(V[v])) <= eps;
-			if (in) on[faces[f].from].push_back(f);
-		}
+		for (int f = 0; f < (int) faces.size(); ++f)
+			if (!faces[f].dropped && pl.holds(V, faces[f].t, eps)) on[faces[f].from].push_back(f);
 		if (on[0].empty() || on[1].empty()) return;
 		std::map<int, Poly2> tri;   // each face on the plane in 2D, as it is oriented
 		for (int s = 0; s < 2; ++s)
@@ -220,18 +217,12 @@ TriMesh without_needles(const TriMesh& m)
 
 TriMesh glue(const TriMesh& a, const TriMesh& b, const std::vector<Plane>& planes, double eps)
 {
-	// Weld: vertices the cuts shared are the same doubles on both sides.
-	std::vector<Vec3>                    V;
-	std::map<std::array<double, 3>, int> at;
-	std::vector<Face>                    faces;
+	std::vector<Vec3> V;
+	ExactWeld         weld(V);
+	std::vector<Face> faces;
 	for (int s = 0; s < 2; ++s) {
-		const TriMesh&   m = s ? b : a;
-		std::vector<int> id(m.V.size());
-		for (size_t v = 0; v < m.V.size(); ++v) {
-			auto [it, fresh] = at.emplace(std::array<double, 3>{m.V[v].x(), m.V[v].y(), m.V[v].z()}, (int) V.size());
-			if (fresh) V.push_back(m.V[v]);
-			id[v] = it->second;
-		}
+		const TriMesh&         m  = s ? b : a;
+		const std::vector<int> id = weld.add(m);
 		for (const Tri& t : m.F) faces.push_back({{id[t[0]], id[t[1]], id[t[2]]}, s, false});
 	}
 	for (const Plane& pl : planes) PlaneSeam(V, pl, eps).cut(faces);

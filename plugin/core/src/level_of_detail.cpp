@@ -6,7 +6,6 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
-#include <map>
 #include <set>
 
 namespace acd {
@@ -84,25 +83,14 @@ void subtree(const Decomposition& D, int id, std::vector<int>& leaves, std::vect
 TriMesh weld_without_caps(const Decomposition& D, const std::vector<int>& leaves, const std::vector<Plane>& cuts,
                           double eps)
 {
-	TriMesh                              all;
-	std::map<std::array<double, 3>, int> at;
+	TriMesh   all;
+	ExactWeld weld(all.V);
 	for (int l : leaves) {
-		const TriMesh&   m = D.nodes[l].mesh;
-		std::vector<int> id_of(m.V.size());
-		for (size_t v = 0; v < m.V.size(); ++v) {
-			auto [it, fresh] = at.emplace(std::array<double, 3>{m.V[v].x(), m.V[v].y(), m.V[v].z()}, (int) all.V.size());
-			if (fresh) all.V.push_back(m.V[v]);
-			id_of[v] = it->second;
-		}
-		for (const Tri& t : m.F) {
-			bool cap = false;
-			for (const Plane& pl : cuts) {
-				bool on = true;
-				for (int v : t) on = on && std::abs(pl.eval(m.V[v])) <= eps;
-				cap = cap || on;
-			}
-			if (!cap) all.F.push_back({id_of[t[0]], id_of[t[1]], id_of[t[2]]});
-		}
+		const TriMesh&         m     = D.nodes[l].mesh;
+		const std::vector<int> id_of = weld.add(m);
+		for (const Tri& t : m.F)
+			if (std::none_of(cuts.begin(), cuts.end(), [&](const Plane& pl) { return pl.holds(m.V, t, eps); }))
+				all.F.push_back({id_of[t[0]], id_of[t[1]], id_of[t[2]]});
 	}
 	return all;
 }

@@ -1,16 +1,16 @@
 // The merge stage (merge.h): neighbours from the cuts' caps, each neighbouring pair's union scored by
 // the cuts' own certificate, the least concave union merged first.
 #include "acd/merge.h"
+#include "acd/glue.h"
 #include "acd/hull_reach.h"
 #include "acd/parallel.h"
-#include "acd/glue.h"
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/convex_hull_3.h>
 
 #include <algorithm>
-#include <map>
 #include <cmath>
+#include <map>
 #include <optional>
 #include <queue>
 #include <set>
@@ -40,9 +40,7 @@ std::vector<Tri2> cap_on(const TriMesh& m, const Plane& pl, const Vec3& u, const
 {
 	std::vector<Tri2> out;
 	for (const Tri& t : m.F) {
-		bool on = true;
-		for (int v : t) on = on && std::abs(pl.eval(m.V[v])) <= eps;
-		if (!on) continue;
+		if (!pl.holds(m.V, t, eps)) continue;
 		Tri2 q;
 		for (int k = 0; k < 3; ++k) q[k] = {u.dot(m.V[t[k]]), w.dot(m.V[t[k]])};
 		out.push_back(q);
@@ -196,16 +194,16 @@ private:
 	{
 		const Group &A = groups[a], &B = groups[b];
 		// Outside both parts the distance to their union is the distance to the nearer part, so the
-		// union's hull reach is measured without the union: most pairs fail here, cheaply.
-		// A coarse search (10% of tau, a bounded effort) finds most such reaches; the union's own measure
-		// settles the rest.
+		// union's hull reach is measured without the union: most pairs fail here, cheaply. The search
+		// stops at the first point beyond tau (no refining: relative 1e9) or after a bounded effort; the
+		// union's own measure settles the rest.
 		const Node &PA = A.part, &PB = B.part;
 		TriMesh     both = PA.mesh;
 		append(both, PB.mesh);
 		std::vector<Vec3> corners = A.extreme;
 		corners.insert(corners.end(), B.extreme.begin(), B.extreme.end());
 		const ConvexHull h(corners);
-		if (hull_reach(both, h, std::vector<char>(h.facets(), 1), tau, 0.1 * tau, 0.1, kPrefilterEvaluations).lower > tau)
+		if (hull_reach(both, h, std::vector<char>(h.facets(), 1), tau, 0.1 * tau, 1e9, kPrefilterEvaluations).lower > tau)
 			return std::nullopt;
 		// The cuts they touch along, where their faces are glued.
 		std::set<int> cuts;
@@ -265,7 +263,11 @@ private:
 			Group u = std::move(pool[i].u);
 			pool[i].u = Group();
 			if (!groups[a].alive || !groups[b].alive) continue;   // one of them has merged since
-			for (int x : {a, b}) groups[x] = Group{groups[x].leaves, Node(), {}, false};
+			for (int x : {a, b}) {   // merged away: only its leaves are kept
+				groups[x].alive = false;
+				groups[x].part  = Node();
+				groups[x].extreme.clear();
+			}
 			const int g = (int) groups.size();
 			groups.push_back(std::move(u));
 			std::set<int> around;

@@ -121,6 +121,11 @@ struct Plane
 	Vec3   n = Vec3::UnitZ();
 	double d = 0;
 	double eval(const Vec3& p) const { return n.dot(p) - d; }
+	// Triangle t (of vertices V) lies on the plane: each corner within eps of it (a cut's cap face).
+	bool holds(const std::vector<Vec3>& V, const Tri& t, double eps) const
+	{
+		return std::abs(eval(V[t[0]])) <= eps && std::abs(eval(V[t[1]])) <= eps && std::abs(eval(V[t[2]])) <= eps;
+	}
 };
 
 } // namespace acd
