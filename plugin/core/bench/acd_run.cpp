@@ -1,5 +1,5 @@
 // Decompose an OBJ file from the command line (for profiling the core without MeshLab):
-//   acd_run mesh.obj tau_percent [bisector|best] [max_parts]
+//   acd_run mesh.obj tau_percent [bisector|best][+merge] [max_parts]
 #include "acd/decompose.h"
 #include "obj_io.h"
 
@@ -9,7 +9,7 @@
 int main(int argc, char** argv)
 {
 	if (argc < 3) {
-		std::fprintf(stderr, "usage: %s mesh.obj tau_percent [bisector|best] [max_parts]\n", argv[0]);
+		std::fprintf(stderr, "usage: %s mesh.obj tau_percent [bisector|best][+merge] [max_parts]\n", argv[0]);
 		return 2;
 	}
 	acd::TriMesh m = acd::bench::read_obj(argv[1]);
@@ -18,7 +18,9 @@ int main(int argc, char** argv)
 		acd::Solid            s  = acd::make_solid(m);
 		acd::DecomposeOptions o;
 		o.tau = std::atof(argv[2]) / 100 * acd::enclosing_diameter(s.mesh.V);
-		if (argc > 3 && std::string(argv[3]) == "bisector") o.cut_plane_selection = acd::CutPlaneSelection::Bisector;
+		const std::string sel = argc > 3 ? argv[3] : "";
+		if (sel.rfind("bisector", 0) == 0) o.cut_plane_selection = acd::CutPlaneSelection::Bisector;
+		o.merge_parts = sel.find("+merge") != std::string::npos;
 		if (argc > 4) o.max_parts = std::atoi(argv[4]);
 		o.progress = [](int p, const char* msg) {
 			std::fprintf(stderr, "%3d%% %s\n", p, msg);

@@ -5,7 +5,9 @@
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Polygon_mesh_processing/repair_degeneracies.h>
 #include <CGAL/Surface_mesh.h>
-#include <CGAL/intersections.h>
+#include <CGAL/Constrained_Delaunay_triangulation_2.h>
+#include <CGAL/Triangulation_vertex_base_with_info_2.h>
+#include <CGAL/centroid.h>
 
 #include <algorithm>
 #include <cmath>
@@ -15,73 +17,21 @@ namespace acd {
 
 namespace {
 
-// The 2D work is exact: a crossing of the two sides' edges is then the same point whichever side
-// computes it (rounded once, it is the same double), however shallow the crossing.
+// The 2D work is exact: every triangle of the seam's triangulation is then wholly inside or outside
+// each face, however shallow the crossings of the two sides' edges.
 using K     = CGAL::Exact_predicates_exact_constructions_kernel;
 using P2    = K::Point_2;
-using Poly2 = std::vector<P2>;   // convex, counter-clockwise
 
-// The part of convex q to the left of the line a -> b (or to its right).
-Poly2 clip(const Poly2& q, const P2& a, const P2& b, bool left)
+// The seam's 2D triangulation: the two sides' faces on a plane, every edge a constraint, crossings
+// exact; each triangle lies wholly inside or outside each face, so one point decides which cover it.
+struct Where
 {
-	Poly2      out;
-	const auto side = [&](const P2& p) {
-		const CGAL::Orientation o = CGAL::orientation(a, b, p);
-		return left ? int(o) : -int(o);
-	};
-	for (size_t i = 0; i < q.size(); ++i) {
-		const P2 &c = q[i], &n = q[(i + 1) % q.size()];
-		const int sc = side(c), sn = side(n);
-		if (sc >= 0) out.push_back(c);
-		if (sc * sn < 0) {
-			const auto x = CGAL::intersection(K::Line_2(a, b), K::Segment_2(c, n));
-			if (const P2* p = x ? std::get_if<P2>(&*x) : nullptr) out.push_back(*p);
-		}
-	}
-	return out;
-}
-
-// The area, exact (signed): a piece the clipping pinched to nothing has none.
-K::FT exact_area(const Poly2& q)
-{
-	K::FT a = 0;
-	for (size_t i = 1; i + 1 < q.size(); ++i) a += CGAL::area(q[0], q[i], q[i + 1]);
-	return a;
-}
-
-// Area, rounded (only its sign is used: the orientation a face had).
-double area(const Poly2& q)
-{
-	double a = 0;
-	for (size_t i = 0; i < q.size(); ++i) {
-		const P2 &p = q[i], &r = q[(i + 1) % q.size()];
-		a += CGAL::to_double(p.x()) * CGAL::to_double(r.y()) - CGAL::to_double(p.y()) * CGAL::to_double(r.x());
-	}
-	return a / 2;
-}
-
-
-// q minus triangle s (counter-clockwise): the parts of q outside each of s's edges in turn.
-std::vector<Poly2> minus(const Poly2& q, const Poly2& s)
-{
-	std::vector<Poly2> out;
-	Poly2              in = q;
-	for (int k = 0; k < 3 && in.size() >= 3; ++k) {
-		const P2 &a = s[k], &b = s[(k + 1) % 3];
-		Poly2     outside = clip(in, a, b, false);
-		if (outside.size() >= 3) out.push_back(std::move(outside));
-		in = clip(in, a, b, true);
-	}
-	return out;
-}
-
-bool boxes_meet(const Poly2& a, const Poly2& b)
-{
-	Eigen::AlignedBox2d A, B;
-	for (const P2& p : a) A.extend(Eigen::Vector2d(CGAL::to_double(p.x()), CGAL::to_double(p.y())));
-	for (const P2& p : b) B.extend(Eigen::Vector2d(CGAL::to_double(p.x()), CGAL::to_double(p.y())));
-	return A.intersects(B);
-}
+	int v = -1;   // the solid's vertex there (-1: a crossing of the two sides' edges)
+};
+using Vb  = CGAL::Triangulation_vertex_base_with_info_2<Where, K>;
+using Fb  = CGAL::Constrained_triangulation_face_base_2<K>;
+using TDS = CGAL::Triangulation_data_structure_2<Vb, Fb>;
+using CDT = CGAL::Constrained_Delaunay_triangulation_2<K, TDS, CGAL::Exact_intersections_tag>;
 
 struct Face
 {
@@ -90,7 +40,8 @@ struct Face
 	bool dropped = false;
 };
 
-// The solids' faces on one plane, cut against each other.
+// The solids' faces on one plane replaced by the region exactly one of them covers (the two sides'
+// opposite faces cancel where they overlap), triangulated so that no seam vertex hangs on an edge.
 class PlaneSeam
 {
 public:
@@ -100,92 +51,123 @@ public:
 		w = pl.n.cross(u);
 	}
 
-	void cut(std::vector<Face>& faces)
+	// Vertices that coincide in the plane (within eps) with another are added to `alias`, renamed to
+	// it; they are rounding-error copies of one point the two sides computed apart.
+	void cut(std::vector<Face>& faces, std::map<int, int>& alias)
 	{
-		std::vector<int> on[2];
+		std::vector<int> on;
+		bool             side[2] = {false, false};
 		for (int f = 0; f < (int) faces.size(); ++f)
-			if (!faces[f].dropped && pl.holds(V, faces[f].t, eps)) on[faces[f].from].push_back(f);
-		if (on[0].empty() || on[1].empty()) return;
-		std::map<int, Poly2> tri;   // each face on the plane in 2D, as it is oriented
-		for (int s = 0; s < 2; ++s)
-			for (int f : on[s]) tri[f] = flat(faces[f].t);
-		std::vector<Face> added;
-		for (int s = 0; s < 2; ++s)
-			for (int f : on[s]) {
-				std::vector<int> others;
-				for (int g : on[1 - s])
-					if (facing(faces[f].t) != facing(faces[g].t) && boxes_meet(tri[f], tri[g])) others.push_back(g);
-				if (others.empty()) continue;
-				std::vector<Poly2> left{ccw(tri[f])};
-				for (int g : others) {
-					const Poly2        covered = ccw(tri[g]);
-					std::vector<Poly2> next;
-					for (const Poly2& q : left)
-						for (Poly2& r : boxes_meet(q, covered) ? minus(q, covered) : std::vector<Poly2>{q})
-							if (exact_area(r) > 0) next.push_back(std::move(r));
-					left.swap(next);
+			if (!faces[f].dropped && pl.holds(V, faces[f].t, eps)) on.push_back(f), side[faces[f].from] = true;
+		if (!side[0] || !side[1]) return;
+		std::vector<int> vs;
+		for (int f : on)
+			for (int v : faces[f].t) vs.push_back(v);
+		std::sort(vs.begin(), vs.end());
+		vs.erase(std::unique(vs.begin(), vs.end()), vs.end());
+		for (int v : vs) flat.push_back({Eigen::Vector2d(u.dot(V[v]), w.dot(V[v])), v});
+		std::sort(flat.begin(), flat.end(), [](const auto& p, const auto& q) { return p.first.x() < q.first.x(); });
+		for (size_t i = 0; i < flat.size(); ++i)
+			for (size_t j = i + 1; j < flat.size() && flat[j].first.x() - flat[i].first.x() <= eps; ++j)
+				if ((flat[j].first - flat[i].first).norm() <= eps) {
+					const int p = root(flat[i].second, alias), q = root(flat[j].second, alias);
+					if (p != q) alias[std::max(p, q)] = std::min(p, q);
 				}
-				const bool turned = area(tri[f]) < 0;
-				for (const Poly2& q : left) fan(q, turned, faces[f].from, added);
-				faces[f].dropped = true;
+		CDT                                  cdt;
+		std::map<int, CDT::Vertex_handle>    at;
+		std::vector<std::array<P2, 3>>       tri;
+		std::vector<Eigen::AlignedBox2d>     box;
+		for (int f : on) {
+			std::array<P2, 3> q;
+			for (int k = 0; k < 3; ++k) {
+				const int v = root(faces[f].t[k], alias);
+				auto [it, fresh] = at.emplace(v, CDT::Vertex_handle());
+				if (fresh) {
+					it->second = cdt.insert(P2(u.dot(V[v]), w.dot(V[v])));
+					if (it->second->info().v < 0) it->second->info().v = v;
+					else if (it->second->info().v != v) alias[v] = it->second->info().v;
+				}
+				q[k] = it->second->point();
 			}
-		for (Face& f : added) faces.push_back(f);
+			tri.push_back(q);
+			box.push_back(bounds(q));
+		}
+		for (int f : on)
+			for (int k = 0; k < 3; ++k) {
+				const auto p = at[root(faces[f].t[k], alias)], q = at[root(faces[f].t[(k + 1) % 3], alias)];
+				if (p != q) cdt.insert_constraint(p, q);
+			}
+		std::vector<Face> kept;
+		for (auto fh : cdt.finite_face_handles()) {
+			const P2 c = CGAL::centroid(fh->vertex(0)->point(), fh->vertex(1)->point(), fh->vertex(2)->point());
+			const Eigen::Vector2d cd(CGAL::to_double(c.x()), CGAL::to_double(c.y()));
+			int cover = -1, covers = 0;
+			for (size_t i = 0; i < on.size() && covers < 2; ++i)
+				if (box[i].exteriorDistance(cd) <= 1e-9 * (1 + box[i].diagonal().norm()) && inside(tri[i], c)) cover = (int) i, ++covers;
+			if (covers != 1) continue;
+			Face f;
+			f.from = faces[on[cover]].from;
+			const bool turned = CGAL::orientation(tri[cover][0], tri[cover][1], tri[cover][2]) == CGAL::CLOCKWISE;
+			for (int k = 0; k < 3; ++k) f.t[turned ? 2 - k : k] = vertex(fh->vertex(k), alias);
+			if (!needle(f.t)) kept.push_back(f);
+		}
+		for (int f : on) faces[f].dropped = true;
+		faces.insert(faces.end(), kept.begin(), kept.end());
 	}
 
 private:
-	std::vector<Vec3>&              V;
-	const Plane                     pl;
-	const double                    eps;
-	Vec3                            u, w;
-	std::map<std::pair<double, double>, int> at;   // plane points made so far, by their 2D position
+	std::vector<Vec3>& V;
+	const Plane        pl;
+	const double       eps;
+	Vec3               u, w;
 
-	bool facing(const Tri& t) const { return pl.n.dot((V[t[1]] - V[t[0]]).cross(V[t[2]] - V[t[0]])) > 0; }
-
-	Poly2 flat(const Tri& t)
+	// A sliver of the seam no wider than eps once rounded (its corners on one line, or snapped
+	// together): dropped, its long edge's neighbour gets its middle corner (close_rims).
+	bool needle(const Tri& t) const
 	{
-		Poly2 q;
-		for (int v : t) {
-			const double x = u.dot(V[v]), y = w.dot(V[v]);
-			at.emplace(std::make_pair(x, y), v);
-			q.emplace_back(x, y);
-		}
-		return q;
+		if (t[0] == t[1] || t[1] == t[2] || t[2] == t[0]) return true;
+		double longest = 0;
+		for (int k = 0; k < 3; ++k) longest = std::max(longest, (V[t[(k + 1) % 3]] - V[t[k]]).norm());
+		return (V[t[1]] - V[t[0]]).cross(V[t[2]] - V[t[0]]).norm() <= eps * longest;
 	}
 
-	static Poly2 ccw(Poly2 q)
+	static Eigen::AlignedBox2d bounds(const std::array<P2, 3>& q)
 	{
-		if (area(q) < 0) std::reverse(q.begin(), q.end());
-		return q;
+		Eigen::AlignedBox2d b;
+		for (const P2& p : q) b.extend(Eigen::Vector2d(CGAL::to_double(p.x()), CGAL::to_double(p.y())));
+		return b;
 	}
 
-	// The vertex at 2D point p: a vertex of the solids there (the same doubles, or within eps), or a
-	// new one lifted onto the plane.
-	int vertex(const P2& e)
+	static bool inside(const std::array<P2, 3>& t, const P2& c)
 	{
-		const double x = CGAL::to_double(CGAL::exact(e.x())), y = CGAL::to_double(CGAL::exact(e.y()));
-		const auto   it = at.find({x, y});
-		if (it != at.end()) return it->second;
-		for (const auto& [q, v] : at)
-			if (std::hypot(q.first - x, q.second - y) <= eps) return v;
-		V.push_back(pl.n * pl.d + x * u + y * w);
-		at.emplace(std::make_pair(x, y), (int) V.size() - 1);
-		return (int) V.size() - 1;
+		const CGAL::Orientation o = CGAL::orientation(t[0], t[1], t[2]);
+		return o != CGAL::COLLINEAR && CGAL::orientation(t[0], t[1], c) == o && CGAL::orientation(t[1], t[2], c) == o &&
+		       CGAL::orientation(t[2], t[0], c) == o;
 	}
 
-	void fan(const Poly2& q, bool turned, int from, std::vector<Face>& out)
+	std::vector<std::pair<Eigen::Vector2d, int>> flat;   // the plane's vertices in 2D, by x
+
+	static int root(int v, const std::map<int, int>& alias)
 	{
-		std::vector<int> id;
-		for (const P2& p : q) {
-			const int v = vertex(p);
-			if (id.empty() || (v != id.back() && v != id.front())) id.push_back(v);
+		for (auto it = alias.find(v); it != alias.end(); it = alias.find(v)) v = it->second;
+		return v;
+	}
+
+	// The solid's vertex, or a crossing: the solid's vertex within eps of it, else a new vertex lifted
+	// onto the plane (made once).
+	int vertex(CDT::Vertex_handle vh, const std::map<int, int>& alias)
+	{
+		if (vh->info().v < 0) {
+			const Eigen::Vector2d p(CGAL::to_double(vh->point().x()), CGAL::to_double(vh->point().y()));
+			const auto lo = std::lower_bound(flat.begin(), flat.end(), p.x() - eps, [](const auto& q, double x) { return q.first.x() < x; });
+			for (auto it = lo; it != flat.end() && it->first.x() <= p.x() + eps && vh->info().v < 0; ++it)
+				if ((it->first - p).norm() <= eps) vh->info().v = root(it->second, alias);
+			if (vh->info().v < 0) {
+				V.push_back(pl.n * pl.d + p.x() * u + p.y() * w);
+				vh->info().v = (int) V.size() - 1;
+			}
 		}
-		for (size_t k = 1; k + 1 < id.size(); ++k) {
-			if (id[k] == id[0] || id[k + 1] == id[0] || id[k] == id[k + 1]) continue;   // a pinched sliver
-			Face f;
-			f.t    = turned ? Tri{id[0], id[k + 1], id[k]} : Tri{id[0], id[k], id[k + 1]};
-			f.from = from;
-			out.push_back(f);
-		}
+		return vh->info().v;
 	}
 };
 
@@ -225,11 +207,17 @@ TriMesh glue(const TriMesh& a, const TriMesh& b, const std::vector<Plane>& plane
 		const std::vector<int> id = weld.add(m);
 		for (const Tri& t : m.F) faces.push_back({{id[t[0]], id[t[1]], id[t[2]]}, s, false});
 	}
-	for (const Plane& pl : planes) PlaneSeam(V, pl, eps).cut(faces);
+	std::map<int, int> alias;
+	for (const Plane& pl : planes) PlaneSeam(V, pl, eps).cut(faces, alias);
 	TriMesh all;
 	all.V = std::move(V);
-	for (const Face& f : faces)
-		if (!f.dropped) all.F.push_back(f.t);
+	for (const Face& f : faces) {
+		if (f.dropped) continue;
+		Tri t = f.t;
+		for (int& v : t)
+			while (alias.count(v)) v = alias[v];
+		if (t[0] != t[1] && t[1] != t[2] && t[2] != t[0]) all.F.push_back(t);
+	}
 	close_rims(all, eps);
 	return without_needles(compacted(all));
 }

@@ -95,6 +95,7 @@ struct Group
 	std::vector<int>  leaves;    // node ids, path order
 	Node              part;      // its solid and measures, as the merged part's node will hold them
 	std::vector<Vec3> extreme;   // the vertices of its hull
+	long              crossings = 0;   // faces crossing away from the cuts between its leaves
 	bool              alive = true;
 };
 
@@ -133,6 +134,7 @@ private:
 	std::vector<Group>                              groups;
 	std::vector<std::set<int>>                      nbr;
 	std::map<std::pair<int, int>, int>              contact;   // neighbouring leaves -> the cut between them
+	std::map<std::string, int>                      by_path;
 	std::vector<Candidate>                          pool;
 	int                                             merges = 0;
 	static constexpr int kPrefilterEvaluations = 2000;   // distance queries per pair before its union is built
@@ -159,6 +161,7 @@ private:
 
 	void start_groups()
 	{
+		for (int k = 0; k < (int) D.nodes.size(); ++k) by_path[D.nodes[k].path] = k;
 		for (int l : D.leaves()) {
 			const Node& n = D.nodes[l];
 			Group       g;
@@ -169,11 +172,15 @@ private:
 			groups.push_back(std::move(g));
 		}
 		parallel_for(groups.size(), [&](size_t i) {
-			if (groups[i].alive) groups[i].extreme = extreme_points(groups[i].part.mesh.V);
+			if (!groups[i].alive) return;
+			groups[i].extreme   = extreme_points(groups[i].part.mesh.V);
+			groups[i].crossings = (long) self_crossings(groups[i].part.mesh, bbox_diagonal(groups[i].part.mesh.V)).size();
 		});
 	}
 
-	bool certified(const Node& n) const { return n.concavity <= tau && n.hull_distance_bound <= 1.01 * tau * (1 + 1e-9); }
+	// The cuts' certificate: the reach is refined to 1% of tau (decompose.cpp's tau_convex).
+	double bar() const { return 1.01 * tau * (1 + 1e-9); }
+	bool   certified(const Node& n) const { return n.concavity <= tau && n.hull_distance_bound <= bar(); }
 
 	void start_neighbours()
 	{
@@ -189,21 +196,65 @@ private:
 		}
 	}
 
+	// The cuts between the leaves: the nodes with some of them below each child.
+	std::vector<Plane> separating(const std::vector<int>& leaves) const
+	{
+		std::map<std::string, int> sides;
+		for (int l : leaves) {
+			const std::string& p = D.nodes[l].path;
+			for (size_t n = 1; n < p.size(); ++n) sides[p.substr(0, n)] |= p[n] == '0' ? 1 : 2;
+		}
+		std::vector<Plane> planes;
+		for (const auto& [path, both] : sides) {
+			const auto it = by_path.find(path);
+			if (both == 3 && it != by_path.end() && D.nodes[it->second].has_plane) planes.push_back(D.nodes[it->second].plane);
+		}
+		return planes;
+	}
+
+	// Faces of a solid crossing each other, but for those that a cut between its leaves separates:
+	// leaves on either side of a plane only touch there (their rims met a rounding error apart, or
+	// they meet along an edge), which is no fold.
+	long crossings_off_seams(const Solid& s, const std::vector<Plane>& planes) const
+	{
+		if (s.self_intersections == 0) return 0;
+		const auto side = [&](const Tri& t, const Plane& pl) {
+			double lo = INFINITY, hi = -INFINITY;
+			for (int v : t) lo = std::min(lo, pl.eval(s.mesh.V[v])), hi = std::max(hi, pl.eval(s.mesh.V[v]));
+			if (hi <= eps && lo >= -eps) {   // a face in the plane: on its solid's side
+				const Vec3& A = s.mesh.V[t[0]];
+				return pl.n.dot((s.mesh.V[t[1]] - A).cross(s.mesh.V[t[2]] - A)) > 0 ? -1 : 1;
+			}
+			return hi <= eps ? -1 : lo >= -eps ? 1 : 0;
+		};
+		long n = 0;
+		for (const auto& [f, g] : self_crossings(s.mesh, bbox_diagonal(s.mesh.V))) {
+			bool apart = false;
+			for (const Plane& pl : planes) {
+				const int a = side(s.mesh.F[f], pl), b = side(s.mesh.F[g], pl);
+				apart |= a != 0 && b != 0 && a != b;
+			}
+			n += !apart;
+		}
+		return n;
+	}
+
 	// The union of groups a and b if it passes the certificate.
 	std::optional<Group> unite(int a, int b) const
 	{
 		const Group &A = groups[a], &B = groups[b];
 		// Outside both parts the distance to their union is the distance to the nearer part, so the
 		// union's hull reach is measured without the union: most pairs fail here, cheaply. The search
-		// stops at the first point beyond tau (no refining: relative 1e9) or after a bounded effort; the
-		// union's own measure settles the rest.
+		// stops at the first point beyond the certificate's bar (no refining: relative 1e9), which the
+		// union would fail whatever its measure finds, or after a bounded effort; the union's own
+		// measure settles the rest.
 		const Node &PA = A.part, &PB = B.part;
 		TriMesh     both = PA.mesh;
 		append(both, PB.mesh);
 		std::vector<Vec3> corners = A.extreme;
 		corners.insert(corners.end(), B.extreme.begin(), B.extreme.end());
 		const ConvexHull h(corners);
-		if (hull_reach(both, h, std::vector<char>(h.facets(), 1), tau, 0.1 * tau, 1e9, kPrefilterEvaluations).lower > tau)
+		if (hull_reach(both, h, std::vector<char>(h.facets(), 1), bar(), 0.1 * tau, 1e9, kPrefilterEvaluations).lower > bar())
 			return std::nullopt;
 		// The cuts they touch along, where their faces are glued.
 		std::set<int> cuts;
@@ -221,7 +272,13 @@ private:
 		catch (const Error&) {   // the glued surface is not a clean solid (a seam left open)
 			return std::nullopt;
 		}
-		if (s.shells != 1 || s.cavities > 0 || s.self_intersections > 0) return std::nullopt;
+		// No fold of its own: the union crosses itself no more than its parts did (a part cut from a
+		// surface that nearly touches itself may carry such crossings from the cuts).
+		std::vector<int> leaves;
+		std::merge(A.leaves.begin(), A.leaves.end(), B.leaves.begin(), B.leaves.end(), std::back_inserter(leaves),
+		           [&](int x, int y) { return D.nodes[x].path < D.nodes[y].path; });
+		const long crossings = crossings_off_seams(s, separating(leaves));
+		if (s.shells != 1 || s.cavities > 0 || crossings > A.crossings + B.crossings) return std::nullopt;
 		if (std::abs(s.volume - PA.volume - PB.volume) > 1e-6 * (PA.volume + PB.volume)) return std::nullopt;
 		const Topology        topo(s.mesh);
 		const ConvexHull      hull(s.mesh.V);
@@ -235,10 +292,10 @@ private:
 		n.notch_count         = rep.notches;
 		if (rep.max_vertex >= 0) n.notch = s.mesh.V[rep.max_vertex];
 		if (!certified(n)) return std::nullopt;
-		n.mesh    = std::move(s.mesh);
-		g.extreme = extreme_points(corners);
-		std::merge(A.leaves.begin(), A.leaves.end(), B.leaves.begin(), B.leaves.end(), std::back_inserter(g.leaves),
-		           [&](int x, int y) { return D.nodes[x].path < D.nodes[y].path; });
+		n.mesh      = std::move(s.mesh);
+		g.extreme   = extreme_points(corners);
+		g.crossings = crossings;
+		g.leaves = std::move(leaves);
 		return g;
 	}
 

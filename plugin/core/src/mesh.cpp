@@ -371,10 +371,12 @@ void split_vertex_fans(Solid& s)
 		}
 }
 
+} // namespace
+
 // Cuts assume the surface bounds one solid; overlapping or folded sheets can make parts that are not
 // closed. Counted, not refused: scanned meshes often cross themselves a little (the host decides;
 // the decomposition itself never returns an open part).
-long self_crossings(const TriMesh& m, double diag)
+std::vector<std::pair<int, int>> self_crossings(const TriMesh& m, double diag)
 {
 	using K = CGAL::Exact_predicates_inexact_constructions_kernel;
 	std::vector<K::Point_3> pts;
@@ -387,13 +389,13 @@ long self_crossings(const TriMesh& m, double diag)
 	CGAL::Polygon_mesh_processing::triangle_soup_self_intersections(pts, tris, std::back_inserter(pairs));
 	// Faces that share a corner, or nearly do, may cross by a rounding error (tiny triangles of
 	// earlier cuts do): not a fold of the surface.
-	const double near2    = std::pow(1e-9 * diag, 2);
-	long         crossing = 0;
+	const double                     near2 = std::pow(1e-9 * diag, 2);
+	std::vector<std::pair<int, int>> crossing;
 	for (const auto& [f, g] : pairs) {
 		bool touch = false;
 		for (int a : m.F[f])
 			for (int b : m.F[g]) touch |= a == b || (m.V[a] - m.V[b]).squaredNorm() <= near2;
-		crossing += !touch;
+		if (!touch) crossing.push_back({(int) f, (int) g});
 	}
 	return crossing;
 }
@@ -416,8 +418,6 @@ void orient(Solid& s, double diag)
 	}
 }
 
-} // namespace
-
 Solid make_solid(const TriMesh& in)
 {
 	Solid                  s;
@@ -426,7 +426,7 @@ Solid make_solid(const TriMesh& in)
 	checked_faces(in, remap, s);
 	check_edges(s.mesh);
 	split_vertex_fans(s);
-	s.self_intersections = self_crossings(s.mesh, diag);
+	s.self_intersections = (long) self_crossings(s.mesh, diag).size();
 	orient(s, diag);
 	return s;
 }

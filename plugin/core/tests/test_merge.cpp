@@ -43,6 +43,51 @@ TEST_CASE("glue: two parts whose caps overlap in part become one closed solid of
 	CHECK_NEAR(back.volume, 2.0, 1e-9);
 }
 
+namespace {
+
+// The two faces of `m` on plane x = `x` (a box's side) re-triangulated along their other diagonal.
+void flip_side(TriMesh& m, double x)
+{
+	std::vector<int> on;
+	for (int f = 0; f < (int) m.F.size(); ++f)
+		if (std::abs(m.V[m.F[f][0]].x() - x) + std::abs(m.V[m.F[f][1]].x() - x) + std::abs(m.V[m.F[f][2]].x() - x) == 0)
+			on.push_back(f);
+	REQUIRE(on.size() == 2);
+	Tri &s = m.F[on[0]], &t = m.F[on[1]];
+	for (int i = 0; i < 3; ++i)
+		for (int j = 0; j < 3; ++j)
+			if (s[i] == t[(j + 1) % 3] && s[(i + 1) % 3] == t[j]) {   // shared edge a -> b in s, b -> a in t
+				const int a = s[i], b = s[(i + 1) % 3], c = s[(i + 2) % 3], d = t[(j + 2) % 3];
+				s = {a, d, c};
+				t = {d, b, c};
+				return;
+			}
+	FAIL("the side's two faces share no edge");
+}
+
+} // namespace
+
+TEST_CASE("glue: caps triangulated differently on the two sides cross, and still close exactly")
+{
+	// Two boxes touching on x = 1 with crossing diagonals there, and a copy of one corner a rounding
+	// error away: the seam's triangulation has a crossing vertex, and the near copy is one vertex.
+	TriMesh a = shapes::box({0, 0, 0}, {1, 1, 1}), b = shapes::box({1, 0, 0}, {2, 2, 1});
+	flip_side(a, 1);
+	for (Vec3& p : b.V)
+		if (p.x() == 1 && p.y() == 0 && p.z() == 0) p.y() = 1e-17;
+	const TriMesh g = glue(a, b, {plane({1, 0, 0}, 1)}, 1e-9);
+	const Solid   u = make_solid(g);
+	CHECK(u.shells == 1);
+	CHECK(u.self_intersections == 0);
+	CHECK_NEAR(u.volume, 3.0, 1e-12);
+	// The exposed part of b's side (y from 1 to 2) stays, the rest of both sides is gone.
+	double area_on_plane = 0;
+	for (const Tri& t : u.mesh.F)
+		if (u.mesh.V[t[0]].x() == 1 && u.mesh.V[t[1]].x() == 1 && u.mesh.V[t[2]].x() == 1)
+			area_on_plane += 0.5 * (u.mesh.V[t[1]] - u.mesh.V[t[0]]).cross(u.mesh.V[t[2]] - u.mesh.V[t[0]]).norm();
+	CHECK_NEAR(area_on_plane, 1.0, 1e-12);
+}
+
 TEST_CASE("merge: neighbours from the caps, and merged parts that are an exact, certified partition")
 {
 	// A ring: the cuts around it, each made for the notch left most concave, leave neighbouring

@@ -9,6 +9,7 @@
 #include <array>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace acd {
@@ -69,6 +70,9 @@ struct Solid
 
 // Throws Error(InvalidInput) naming the first problem found (with its code and count).
 Solid make_solid(const TriMesh& input);
+
+// The pairs of faces that cross away from shared corners (corners within 1e-9 `diag` count as shared).
+std::vector<std::pair<int, int>> self_crossings(const TriMesh& m, double diag);
 
 double signed_volume(const TriMesh& m);
 double surface_area(const TriMesh& m);
