@@ -96,10 +96,13 @@ def test_bunny_partition_certificate_and_tree(ms):
     assert res["parts"] == len(ids) >= 2
     check_partition(ms, 0, ids, tau_abs=res["tau_model_units"], overlap_samples=15)
     tree = res["tree"]
-    leaves = sorted(n["path"] for n in tree["nodes"] if n["leaf"])
-    assert ["acd_" + p for p in leaves] == [ms.mesh(i).label() for i in ids]   # stable order
-    for n in tree["nodes"]:
-        if not n["leaf"]:
+    nodes = tree["nodes"]
+    # the parts: leaves left as they are and merged parts, in their (first) leaf's path order
+    parts = sorted([(n["path"], n["path"]) for n in nodes if n["leaf"] and "part" not in n] +
+                   [(nodes[n["merged"][0]]["path"], n["path"]) for n in nodes if "merged" in n])
+    assert ["acd_" + p for _, p in parts] == [ms.mesh(i).label() for i in ids]   # stable order
+    for n in nodes:
+        if not n["leaf"] and "merged" not in n:
             kids = [tree["nodes"][c] for c in n["children"]]
             assert sum(k["volume"] for k in kids) == pytest.approx(n["volume"], rel=1e-9)
             assert "plane" in n

@@ -28,8 +28,9 @@ def run(name, tau, merge, tree_file=None, **kw):
     ms = pymeshlab.MeshSet()
     pymeshlab_acd.load()
     add_mesh(ms, V, F, name)
-    res, ids = pymeshlab_acd.decompose(ms, with_tree=False, tau=tau, merge_parts=merge,
-                                       tree_file=str(tree_file or ""), **kw)
+    if merge is not None:   # None: the filter's default
+        kw["merge_parts"] = merge
+    res, ids = pymeshlab_acd.decompose(ms, with_tree=False, tau=tau, tree_file=str(tree_file or ""), **kw)
     return ms, res, ids
 
 
@@ -43,16 +44,18 @@ def test_merged_parts_are_an_exact_partition_within_tau(name, tau):
     print(f"{name} tau {tau}%: {cut['parts']} cut leaves, {res['parts']} parts merged")
 
 
-def test_merging_makes_fewer_parts():
-    """A ring cut arc by arc at 5%: neighbouring arcs that are convex enough together are merged."""
-    _, merged, _ = run("torus", 5.0, merge=True)
+def test_merging_makes_fewer_parts_by_default():
+    """A ring cut arc by arc at 5%: neighbouring arcs that are convex enough together are merged, with
+    the filter's default settings."""
+    _, merged, _ = run("torus", 5.0, merge=None)
     _, cut, _ = run("torus", 5.0, merge=False)
+    assert merged["merges"] > 0
     assert merged["parts"] < cut["parts"]
 
 
 def test_stepped_shaft_in_at_most_four_parts():
     """Three coaxial cylinders: at tau 2% with the default settings, one piece per cylinder or close."""
-    ms, res, ids = run("stepped_shaft", 2.0, merge=True)
+    ms, res, ids = run("stepped_shaft", 2.0, merge=None)
     assert res["parts"] <= 4
     check_partition(ms, 0, ids, tau_abs=res["tau_model_units"], overlap_samples=10)
 

@@ -112,11 +112,10 @@ void add_decomposition_parameters(RichParameterList& p, float tau, int cut_plane
 		"result reports whether the limit was reached."));
 	if (merge)
 		p.addParam(RichBool(
-			"merge_parts", false, "Merge neighbouring parts",
+			"merge_parts", true, "Merge neighbouring parts",
 			"After the cuts, merge parts that share a cut face while their union stays within tau (by the "
 			"same measure as the cuts, hull distance included), the least concave union first: fewer "
-			"parts, still an exact partition. Off: the cut tree's leaves as they are (which parts merge can "
-			"change with the mesh's pose or vertex order)."));
+			"parts, still an exact partition. Off: the cut tree's leaves as they are."));
 	if (output_hulls)
 		p.addParam(RichBool("output_hulls", false, "Also add part hulls",
 		                    "Add the convex hull of each part as a layer too (named acd_hull_<path>)."));

@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <set>
 
 namespace acd {
 
@@ -45,21 +46,51 @@ struct Face
 class PlaneSeam
 {
 public:
-	PlaneSeam(std::vector<Vec3>& V, const Plane& pl, double eps) : V(V), pl(pl), eps(eps)
+	PlaneSeam(std::vector<Vec3>& V, const Plane& pl, double eps, std::map<int, int>& alias)
+	    : V(V), pl(pl), eps(eps), alias(alias)
 	{
 		u = pl.n.unitOrthogonal();
 		w = pl.n.cross(u);
 	}
 
 	// Vertices that coincide in the plane (within eps) with another are added to `alias`, renamed to
-	// it; they are rounding-error copies of one point the two sides computed apart.
-	void cut(std::vector<Face>& faces, std::map<int, int>& alias)
+	// it: rounding-error copies of one point the two sides computed apart.
+	void cut(std::vector<Face>& faces)
+	{
+		const std::vector<int> on = faces_on(faces);
+		if (on.empty()) return;
+		snap(on, faces);
+		triangulate(on, faces);
+		std::vector<Face> kept = covered_once(on, faces);
+		for (int f : on) faces[f].dropped = true;
+		faces.insert(faces.end(), kept.begin(), kept.end());
+	}
+
+private:
+	using Corners = std::array<CDT::Vertex_handle, 3>;
+
+	std::vector<Vec3>&                           V;
+	const Plane                                  pl;
+	const double                                 eps;
+	std::map<int, int>&                          alias;
+	Vec3                                         u, w;
+	std::vector<std::pair<Eigen::Vector2d, int>> flat;   // the plane's vertices in 2D, by x
+	CDT                                          cdt;
+	std::vector<Corners>                         corners;   // each face on the plane in the triangulation
+
+	// The faces on the plane, if both solids have some there.
+	std::vector<int> faces_on(const std::vector<Face>& faces) const
 	{
 		std::vector<int> on;
 		bool             side[2] = {false, false};
 		for (int f = 0; f < (int) faces.size(); ++f)
 			if (!faces[f].dropped && pl.holds(V, faces[f].t, eps)) on.push_back(f), side[faces[f].from] = true;
-		if (!side[0] || !side[1]) return;
+		return side[0] && side[1] ? on : std::vector<int>{};
+	}
+
+	// The plane's vertices within eps of each other become one (the lowest index).
+	void snap(const std::vector<int>& on, const std::vector<Face>& faces)
+	{
 		std::vector<int> vs;
 		for (int f : on)
 			for (int v : faces[f].t) vs.push_back(v);
@@ -70,56 +101,82 @@ public:
 		for (size_t i = 0; i < flat.size(); ++i)
 			for (size_t j = i + 1; j < flat.size() && flat[j].first.x() - flat[i].first.x() <= eps; ++j)
 				if ((flat[j].first - flat[i].first).norm() <= eps) {
-					const int p = root(flat[i].second, alias), q = root(flat[j].second, alias);
+					const int p = root(flat[i].second), q = root(flat[j].second);
 					if (p != q) alias[std::max(p, q)] = std::min(p, q);
 				}
-		CDT                                  cdt;
-		std::map<int, CDT::Vertex_handle>    at;
-		std::vector<std::array<P2, 3>>       tri;
-		std::vector<Eigen::AlignedBox2d>     box;
+	}
+
+	// Every edge of the faces on the plane a constraint; crossings become vertices (exact).
+	void triangulate(const std::vector<int>& on, const std::vector<Face>& faces)
+	{
+		std::map<int, CDT::Vertex_handle> at;
 		for (int f : on) {
-			std::array<P2, 3> q;
+			Corners c;
 			for (int k = 0; k < 3; ++k) {
-				const int v = root(faces[f].t[k], alias);
+				const int v = root(faces[f].t[k]);
 				auto [it, fresh] = at.emplace(v, CDT::Vertex_handle());
 				if (fresh) {
 					it->second = cdt.insert(P2(u.dot(V[v]), w.dot(V[v])));
 					if (it->second->info().v < 0) it->second->info().v = v;
-					else if (it->second->info().v != v) alias[v] = it->second->info().v;
+					else if (it->second->info().v != v) alias[v] = it->second->info().v;   // same double point
 				}
-				q[k] = it->second->point();
+				c[k] = it->second;
 			}
-			tri.push_back(q);
-			box.push_back(bounds(q));
+			corners.push_back(c);
 		}
-		for (int f : on)
-			for (int k = 0; k < 3; ++k) {
-				const auto p = at[root(faces[f].t[k], alias)], q = at[root(faces[f].t[(k + 1) % 3], alias)];
-				if (p != q) cdt.insert_constraint(p, q);
-			}
-		std::vector<Face> kept;
-		for (auto fh : cdt.finite_face_handles()) {
-			const P2 c = CGAL::centroid(fh->vertex(0)->point(), fh->vertex(1)->point(), fh->vertex(2)->point());
-			const Eigen::Vector2d cd(CGAL::to_double(c.x()), CGAL::to_double(c.y()));
-			int cover = -1, covers = 0;
-			for (size_t i = 0; i < on.size() && covers < 2; ++i)
-				if (box[i].exteriorDistance(cd) <= 1e-9 * (1 + box[i].diagonal().norm()) && inside(tri[i], c)) cover = (int) i, ++covers;
-			if (covers != 1) continue;
-			Face f;
-			f.from = faces[on[cover]].from;
-			const bool turned = CGAL::orientation(tri[cover][0], tri[cover][1], tri[cover][2]) == CGAL::CLOCKWISE;
-			for (int k = 0; k < 3; ++k) f.t[turned ? 2 - k : k] = vertex(fh->vertex(k), alias);
-			if (!needle(f.t)) kept.push_back(f);
-		}
-		for (int f : on) faces[f].dropped = true;
-		faces.insert(faces.end(), kept.begin(), kept.end());
+		for (const Corners& c : corners)
+			for (int k = 0; k < 3; ++k)
+				if (c[k] != c[(k + 1) % 3]) cdt.insert_constraint(c[k], c[(k + 1) % 3]);
 	}
 
-private:
-	std::vector<Vec3>& V;
-	const Plane        pl;
-	const double       eps;
-	Vec3               u, w;
+	// The triangles exactly one face covers, oriented as that face. Each face's triangles are found
+	// from its first corner outwards, across edges, while their centre stays inside it.
+	std::vector<Face> covered_once(const std::vector<int>& on, const std::vector<Face>& faces)
+	{
+		std::map<CDT::Face_handle, std::pair<int, int>> cover;   // triangle -> (faces over it, the last)
+		for (size_t i = 0; i < on.size(); ++i) {
+			const Corners& c = corners[i];
+			if (CGAL::orientation(c[0]->point(), c[1]->point(), c[2]->point()) == CGAL::COLLINEAR) continue;
+			std::vector<CDT::Face_handle> todo;
+			std::set<CDT::Face_handle>    seen;
+			auto                          fc = cdt.incident_faces(c[0]), end = fc;
+			do
+				if (!cdt.is_infinite(fc) && inside(c, fc)) todo.push_back(fc), seen.insert(fc);
+			while (++fc != end);
+			while (!todo.empty()) {
+				const CDT::Face_handle fh = todo.back();
+				todo.pop_back();
+				auto& [n, last] = cover[fh];
+				++n, last = (int) i;
+				for (int k = 0; k < 3; ++k) {
+					const CDT::Face_handle g = fh->neighbor(k);
+					if (!cdt.is_infinite(g) && !seen.count(g) && inside(c, g)) todo.push_back(g), seen.insert(g);
+				}
+			}
+		}
+		std::vector<Face> kept;
+		for (const CDT::Face_handle fh : cdt.finite_face_handles()) {   // the triangulation's order, not the map's
+			const auto it = cover.find(fh);
+			if (it == cover.end() || it->second.first != 1) continue;
+			const int      i = it->second.second;
+			const Corners& c = corners[i];
+			const bool     turned = CGAL::orientation(c[0]->point(), c[1]->point(), c[2]->point()) == CGAL::CLOCKWISE;
+			Face           f;
+			f.from = faces[on[i]].from;
+			for (int k = 0; k < 3; ++k) f.t[turned ? 2 - k : k] = vertex(fh->vertex(k));
+			if (!needle(f.t)) kept.push_back(f);
+		}
+		return kept;
+	}
+
+	// Triangle fh's centre lies inside face c (the triangulation's triangles are wholly in or out).
+	static bool inside(const Corners& c, CDT::Face_handle fh)
+	{
+		const P2 m = CGAL::centroid(fh->vertex(0)->point(), fh->vertex(1)->point(), fh->vertex(2)->point());
+		const CGAL::Orientation o = CGAL::orientation(c[0]->point(), c[1]->point(), c[2]->point());
+		return CGAL::orientation(c[0]->point(), c[1]->point(), m) == o && CGAL::orientation(c[1]->point(), c[2]->point(), m) == o &&
+		       CGAL::orientation(c[2]->point(), c[0]->point(), m) == o;
+	}
 
 	// A sliver of the seam no wider than eps once rounded (its corners on one line, or snapped
 	// together): dropped, its long edge's neighbour gets its middle corner (close_rims).
@@ -131,23 +188,7 @@ private:
 		return (V[t[1]] - V[t[0]]).cross(V[t[2]] - V[t[0]]).norm() <= eps * longest;
 	}
 
-	static Eigen::AlignedBox2d bounds(const std::array<P2, 3>& q)
-	{
-		Eigen::AlignedBox2d b;
-		for (const P2& p : q) b.extend(Eigen::Vector2d(CGAL::to_double(p.x()), CGAL::to_double(p.y())));
-		return b;
-	}
-
-	static bool inside(const std::array<P2, 3>& t, const P2& c)
-	{
-		const CGAL::Orientation o = CGAL::orientation(t[0], t[1], t[2]);
-		return o != CGAL::COLLINEAR && CGAL::orientation(t[0], t[1], c) == o && CGAL::orientation(t[1], t[2], c) == o &&
-		       CGAL::orientation(t[2], t[0], c) == o;
-	}
-
-	std::vector<std::pair<Eigen::Vector2d, int>> flat;   // the plane's vertices in 2D, by x
-
-	static int root(int v, const std::map<int, int>& alias)
+	int root(int v) const
 	{
 		for (auto it = alias.find(v); it != alias.end(); it = alias.find(v)) v = it->second;
 		return v;
@@ -155,13 +196,13 @@ private:
 
 	// The solid's vertex, or a crossing: the solid's vertex within eps of it, else a new vertex lifted
 	// onto the plane (made once).
-	int vertex(CDT::Vertex_handle vh, const std::map<int, int>& alias)
+	int vertex(CDT::Vertex_handle vh)
 	{
 		if (vh->info().v < 0) {
 			const Eigen::Vector2d p(CGAL::to_double(vh->point().x()), CGAL::to_double(vh->point().y()));
 			const auto lo = std::lower_bound(flat.begin(), flat.end(), p.x() - eps, [](const auto& q, double x) { return q.first.x() < x; });
 			for (auto it = lo; it != flat.end() && it->first.x() <= p.x() + eps && vh->info().v < 0; ++it)
-				if ((it->first - p).norm() <= eps) vh->info().v = root(it->second, alias);
+				if ((it->first - p).norm() <= eps) vh->info().v = root(it->second);
 			if (vh->info().v < 0) {
 				V.push_back(pl.n * pl.d + p.x() * u + p.y() * w);
 				vh->info().v = (int) V.size() - 1;
@@ -208,7 +249,7 @@ TriMesh glue(const TriMesh& a, const TriMesh& b, const std::vector<Plane>& plane
 		for (const Tri& t : m.F) faces.push_back({{id[t[0]], id[t[1]], id[t[2]]}, s, false});
 	}
 	std::map<int, int> alias;
-	for (const Plane& pl : planes) PlaneSeam(V, pl, eps).cut(faces, alias);
+	for (const Plane& pl : planes) PlaneSeam(V, pl, eps, alias).cut(faces);
 	TriMesh all;
 	all.V = std::move(V);
 	for (const Face& f : faces) {

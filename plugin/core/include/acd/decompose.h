@@ -44,7 +44,7 @@ struct DecomposeOptions
 	HoleHandling      hole_handling = HoleHandling::BestPlane;
 	HoleOrder         hole_order = HoleOrder::First;
 	double            time_limit_seconds = 0; // 0 = none
-	bool              merge_parts = false;    // merge neighbouring parts while their union is tau-convex (merge.h)
+	bool              merge_parts = true;     // merge neighbouring parts while their union is tau-convex (merge.h)
 	// Called with a percentage and a short status; return false to cancel (throws Error(Cancelled)).
 	std::function<bool(int, const char*)> progress;
 };
