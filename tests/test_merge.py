@@ -116,3 +116,24 @@ def test_command_line_merges_unless_told_not_to(tmp_path):
         assert p.returncode == 0, p.stderr
         parts[flag] = json.loads((out / "summary.json").read_text())["parts"]
     assert parts["--merge-parts"] < parts["--no-merge-parts"]
+
+
+@pytest.mark.parametrize("name", ["keyway", "through_slot"])
+def test_the_same_parts_merge_in_any_pose(name):
+    """Rotated, the solid comes out in the same parts: the same count and the same sorted part volumes
+    (measured here), whatever rounding the rotation brings to the cuts and the glued seams."""
+    import test_equivariance as te
+    V, F = solid(name)
+
+    def parts(W):
+        ms = pymeshlab.MeshSet()
+        pymeshlab_acd.load()
+        add_mesh(ms, W, F, name)
+        res, ids = pymeshlab_acd.decompose(ms, with_tree=False, tau=2.0, cut_plane_selection="bisector")
+        return res["merges"], np.sort([volume(ms.mesh(i).vertex_matrix(), ms.mesh(i).face_matrix()) for i in ids])
+
+    merges0, vols0 = parts(V)
+    assert merges0 > 0
+    for seed in range(3):
+        merges, vols = parts(V @ te.random_rotation(seed).T)
+        assert te.same_parts(vols, vols0), (seed, merges, merges0, len(vols), len(vols0))

@@ -139,16 +139,16 @@ private:
 	int                                             merges = 0;
 	static constexpr int kPrefilterEvaluations = 2000;   // distance queries per pair before its union is built
 
-	// The least concave union first; ties by the groups' first leaves' paths (a pose-free order).
+	// The least concave union first. Concavities within rounding of each other (a symmetric solid's
+	// congruent unions) tie, and ties go by the groups' first leaves' paths: a pose-free order.
 	struct Later
 	{
 		const Merger* m;
 		bool          operator()(int i, int j) const
 		{
 			const Candidate &x = m->pool[i], &y = m->pool[j];
-			const Node &X = x.u.part, &Y = y.u.part;
-			if (X.concavity != Y.concavity) return X.concavity > Y.concavity;
-			if (X.hull_distance != Y.hull_distance) return X.hull_distance > Y.hull_distance;
+			const long long  cx = std::llround(x.u.part.concavity / m->eps), cy = std::llround(y.u.part.concavity / m->eps);
+			if (cx != cy) return cx > cy;
 			return m->key(x) > m->key(y);
 		}
 	};
@@ -269,7 +269,7 @@ private:
 		try {
 			s = make_solid(glue(PA.mesh, PB.mesh, planes, eps));
 		}
-		catch (const Error&) {   // the glued surface is not a clean solid (a seam left open)
+		catch (const std::exception&) {   // the glued surface is not a clean solid (a seam left open)
 			return std::nullopt;
 		}
 		// No fold of its own: the union crosses itself no more than its parts did (a part cut from a
