@@ -34,6 +34,13 @@ using Fb  = CGAL::Constrained_triangulation_face_base_2<K>;
 using TDS = CGAL::Triangulation_data_structure_2<Vb, Fb>;
 using CDT = CGAL::Constrained_Delaunay_triangulation_2<K, TDS, CGAL::Exact_intersections_tag>;
 
+// A plane vertex's name once the copies within eps of it are one (`alias`: copy -> kept vertex).
+int renamed(int v, const std::map<int, int>& alias)
+{
+	for (auto it = alias.find(v); it != alias.end(); it = alias.find(v)) v = it->second;
+	return v;
+}
+
 struct Face
 {
 	Tri  t;
@@ -188,11 +195,7 @@ private:
 		return (V[t[1]] - V[t[0]]).cross(V[t[2]] - V[t[0]]).norm() <= eps * longest;
 	}
 
-	int root(int v) const
-	{
-		for (auto it = alias.find(v); it != alias.end(); it = alias.find(v)) v = it->second;
-		return v;
-	}
+	int root(int v) const { return renamed(v, alias); }
 
 	// The solid's vertex, or a crossing: the solid's vertex within eps of it, else a new vertex lifted
 	// onto the plane (made once).
@@ -212,8 +215,8 @@ private:
 	}
 };
 
-// Slivers of the two sides' seams a rounding error wide are kept by the exact clipping and collapse
-// to zero area once rounded: CGAL's repair (exact predicates) collapses or flips them away.
+// Slivers a rounding error wide that the seams leave (the exact triangulation keeps them; they
+// collapse to zero area once rounded): CGAL's repair (exact predicates) collapses or flips them away.
 TriMesh without_needles(const TriMesh& m)
 {
 	using IK = CGAL::Exact_predicates_inexact_constructions_kernel;
@@ -255,8 +258,7 @@ TriMesh glue(const TriMesh& a, const TriMesh& b, const std::vector<Plane>& plane
 	for (const Face& f : faces) {
 		if (f.dropped) continue;
 		Tri t = f.t;
-		for (int& v : t)
-			while (alias.count(v)) v = alias[v];
+		for (int& v : t) v = renamed(v, alias);
 		if (t[0] != t[1] && t[1] != t[2] && t[2] != t[0]) all.F.push_back(t);
 	}
 	close_rims(all, eps);

@@ -95,7 +95,7 @@ struct Group
 	std::vector<int>  leaves;    // node ids, path order
 	Node              part;      // its solid and measures, as the merged part's node will hold them
 	std::vector<Vec3> extreme;   // the vertices of its hull
-	long              crossings = 0;   // faces crossing away from the cuts between its leaves
+	long              crossings = -1;  // faces crossing away from the cuts between its leaves (-1: not counted)
 	bool              alive = true;
 };
 
@@ -172,9 +172,7 @@ private:
 			groups.push_back(std::move(g));
 		}
 		parallel_for(groups.size(), [&](size_t i) {
-			if (!groups[i].alive) return;
-			groups[i].extreme   = extreme_points(groups[i].part.mesh.V);
-			groups[i].crossings = (long) self_crossings(groups[i].part.mesh, bbox_diagonal(groups[i].part.mesh.V)).size();
+			if (groups[i].alive) groups[i].extreme = extreme_points(groups[i].part.mesh.V);
 		});
 	}
 
@@ -239,6 +237,13 @@ private:
 		return n;
 	}
 
+	// A group's own crossings: a merged group's were counted when it was made, a leaf's only when a
+	// union with it crosses itself (rarely), not for every leaf up front.
+	static long own_crossings(const Group& g)
+	{
+		return g.crossings >= 0 ? g.crossings : (long) self_crossings(g.part.mesh, bbox_diagonal(g.part.mesh.V)).size();
+	}
+
 	// The union of groups a and b if it passes the certificate.
 	std::optional<Group> unite(int a, int b) const
 	{
@@ -278,7 +283,8 @@ private:
 		std::merge(A.leaves.begin(), A.leaves.end(), B.leaves.begin(), B.leaves.end(), std::back_inserter(leaves),
 		           [&](int x, int y) { return D.nodes[x].path < D.nodes[y].path; });
 		const long crossings = crossings_off_seams(s, separating(leaves));
-		if (s.shells != 1 || s.cavities > 0 || crossings > A.crossings + B.crossings) return std::nullopt;
+		if (s.shells != 1 || s.cavities > 0 || (crossings > 0 && crossings > own_crossings(A) + own_crossings(B)))
+			return std::nullopt;
 		if (std::abs(s.volume - PA.volume - PB.volume) > 1e-6 * (PA.volume + PB.volume)) return std::nullopt;
 		const Topology        topo(s.mesh);
 		const ConvexHull      hull(s.mesh.V);

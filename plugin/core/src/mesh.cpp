@@ -400,6 +400,8 @@ std::vector<std::pair<int, int>> self_crossings(const TriMesh& m, double diag)
 	return crossing;
 }
 
+namespace {
+
 // Shells oriented by their nesting, the whole outward; refused if it holds no volume.
 void orient(Solid& s, double diag)
 {
@@ -417,6 +419,8 @@ void orient(Solid& s, double diag)
 		s.flipped = true;
 	}
 }
+
+} // namespace
 
 Solid make_solid(const TriMesh& in)
 {
