@@ -1,10 +1,13 @@
 #!/usr/bin/env python3
-"""Our settings side by side on the robot corpus's fixed 20-mesh subset (the one `bench.sh --robots
---quick` uses): for each setting (cut selection, tau, merge_parts), per mesh the hulls, the hull error
+"""Our settings side by side on the robot corpus's fixed sample (20 meshes by default, the `bench.sh
+--robots --quick` subset; `--sample 60` is the peers' sample): for each setting (cut selection, tau, merge_parts), per mesh the hulls, the hull error
 (acd_metrics, % of the box diagonal; outside / inside the solid where it is closed), the certificate
 (worst part hull / tau, measured independently) and the time, with CoACD 0.05's published row beside.
 
     python3 scripts/study_settings.py --settings best:2:0,best:2:1,bisector:3:1 [--out out/study.jsonl]
+
+With the peers' published rows (docs/robots/robots-peers.json) it also prints, per setting, the issue's
+criteria as bench_robots' front() computes them for the default setting.
 
 A setting is selection:tau:merge (merge 1 or 0). Rows are appended to --out (a rerun skips the rows
 it has) and the summary table is printed from them: medians over the meshes every setting finished.
@@ -40,7 +43,8 @@ def run(p, inp, sel, tau, merge, timeout):
         return row
 
 
-def summary(rows, settings, coacd):
+def summary(rows, settings, peers):
+    coacd = {r["mesh"]: r for r in peers if r["method"] == "coacd" and "0.05" in r["setting"]}
     done = {}
     for r in rows:
         done.setdefault(r["mesh"], {})[r["setting"]] = r
@@ -59,6 +63,15 @@ def summary(rows, settings, coacd):
             cs = [coacd[m] for m in ms]
             print(f"| CoACD 0.05 (published rows) | {med(c['hulls'] for c in cs)} | "
                   f"{100 * med(c['hull_error'] for c in cs):.2f} | | | {sum(c['time'] for c in cs):.0f} |")
+    faces = {r["mesh"]: r["faces"] for r in peers}
+    for s in settings:
+        keyed = {}
+        for r in peers:
+            keyed.setdefault(r["mesh"], {})[(r["method"], r["setting"])] = r
+        for m, d in done.items():
+            if m in keyed and s in d:
+                keyed[m][("ours", s)] = dict(d[s], faces=faces[m])
+        print(f"\n{s}: " + " ".join(br.front(keyed, ours=("ours", s))))
 
 
 def main():
@@ -66,6 +79,7 @@ def main():
     ap.add_argument("--settings", default="best:2:0,best:2:1,bisector:2:1,bisector:3:1")
     ap.add_argument("--out", default=str(REPO / "out" / "study.jsonl"))
     ap.add_argument("--timeout", type=int, default=900)
+    ap.add_argument("--sample", type=int, default=20, help="meshes of the peers' sample to run (20 or 60)")
     ap.add_argument("--report", action="store_true", help="run nothing: print the summary of the rows kept")
     args = ap.parse_args()
     settings = args.settings.split(",")
@@ -75,7 +89,7 @@ def main():
     out.parent.mkdir(parents=True, exist_ok=True)
     rows = [json.loads(line) for line in out.read_text().splitlines()] if out.exists() else []
     have = {(r["mesh"], r["setting"]) for r in rows}
-    for p in ([] if args.report else sorted(br.sample(files, meshes, 20))):
+    for p in ([] if args.report else sorted(br.sample(files, meshes, args.sample))):
         name = br.mesh_name(p, meshes, files)
         inp = REPO / "out" / "robots" / "inputs" / (name.replace("/", "__") + ".obj")
         if not inp.exists():
@@ -91,9 +105,7 @@ def main():
                 f.write(json.dumps(row) + "\n")
             print(json.dumps({k: row.get(k) for k in ("mesh", "setting", "hulls", "hull_error", "time", "worst")}),
                   flush=True)
-    peers = json.loads((REPO / "docs" / "robots" / "robots-peers.json").read_text())
-    coacd = {r["mesh"]: r for r in peers if r["method"] == "coacd" and "0.05" in r["setting"]}
-    summary(rows, settings, coacd)
+    summary(rows, settings, json.loads((REPO / "docs" / "robots" / "robots-peers.json").read_text()))
 
 
 if __name__ == "__main__":

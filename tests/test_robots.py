@@ -1,6 +1,7 @@
 """Real robot meshes (example-robot-data 6.0.0 from PyPI, cached outside the repository): one mesh from
-each of 25 robot descriptions, a gripper link whose cuts leave a film and a self-crossing base,
-decomposed at the default settings the way the batch runs them (as given when closed, else `auto`:
+each of 25 robot descriptions, a gripper link whose cuts leave a film, a self-crossing base and an open
+shoulder link whose wrap has thin pieces where a plane can chip a sliver off and leave the rest as
+concave, decomposed at the default settings the way the batch runs them (as given when closed, else `auto`:
 welded, or alpha-wrapped; a closed mesh whose self-crossing stops a cut: alpha-wrapped). Every part's
 hull must lie within tau of the part by the independent measure of tests/hull_reach.py (1% of tau
 slack), and the parts must be closed and, unless wrapped, add up to the input's volume (divergence
@@ -30,12 +31,14 @@ def corpus():
         by_robot.setdefault(bench_robots.robot_of(p, meshes), []).append(p)
     subset = [min(ps, key=lambda p: (p.stat().st_size, p.name)) for _, ps in sorted(by_robot.items())[:25]]
     # and a gripper link whose cuts leave a film (two sheets a rounding error apart) that no plane splits,
-    # and a closed base that crosses itself where a cut must go (wrapped)
+    # a closed base that crosses itself where a cut must go (wrapped), and an open shoulder link (wrapped)
+    # whose chips, each taken alone, would never make the rest tau-convex
     return meshes, subset + [meshes / "z1_description/meshes/collision/z1_GripperMover.STL",
-                             meshes / "ur_description/meshes/ur3/collision/base.stl"]
+                             meshes / "ur_description/meshes/ur3/collision/base.stl",
+                             meshes / "pr2_description/meshes/shoulder_v0/upper_arm_roll.stl"]
 
 
-@pytest.mark.parametrize("k", range(27))
+@pytest.mark.parametrize("k", range(28))
 def test_robot_mesh_hulls_within_tau(corpus, k, tmp_path):
     import bench_robots
     import numpy as np

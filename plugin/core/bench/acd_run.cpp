@@ -5,6 +5,7 @@
 
 #include <chrono>
 #include <cstdio>
+#include <cstdlib>
 
 int main(int argc, char** argv)
 {
@@ -30,6 +31,21 @@ int main(int argc, char** argv)
 		double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 		std::printf("faces %zu  tau %.6g  parts %zu  max concavity %.6g  time %.3f s\n", m.F.size(), o.tau,
 		            d.parts().size(), d.max_part_concavity(), secs);
+		std::printf("tau_convex %d  max hull distance %.6g  merges %d  time limit %d\n", d.tau_convex(),
+		            d.max_hull_distance(), d.merges, d.time_limit_reached);
+		for (int i : d.parts()) {   // the parts that break the certificate, for diagnosis
+			const acd::Node& n = d.nodes[i];
+			if (n.uncut || n.concavity > d.tau || n.hull_distance_bound > 1.01 * d.tau)
+				std::printf("  part %s: concavity %.4g tau, hull %.4g..%.4g tau, uncut %d, faces %zu\n",
+				            n.path.c_str(), n.concavity / d.tau, n.hull_distance / d.tau,
+				            n.hull_distance_bound / d.tau, n.uncut, n.mesh.F.size());
+		}
+		if (const char* dump = std::getenv("ACD_RUN_PARTS"))   // every part, one object each
+			acd::bench::write_obj_objects(dump, [&] {
+				std::vector<acd::TriMesh> parts;
+				for (int i : d.parts()) parts.push_back(d.nodes[i].mesh);
+				return parts;
+			}());
 	}
 	catch (const std::exception& e) {
 		std::printf("error: %s\n", e.what());

@@ -469,6 +469,14 @@ private:
 		}
 		try {
 			const double a = part_concavity(t.so.parts[0], keep, opt.tau), b = part_concavity(t.so.parts[1], keep, opt.tau);
+			// Nor does one that takes a chip itself over tau and leaves the rest as concave as the
+			// node: two nodes to cut for one, and picked, it would be picked again on the rest.
+			const int    small = va < vb ? 0 : 1;
+			const double chip = small ? b : a, rest = small ? a : b;
+			if (std::min(va, vb) < 1e-3 * v0 && chip > opt.tau && rest >= 0.99 * D.nodes[c.id].concavity) {
+				t.sliver = small;
+				return;
+			}
 			t.score = std::max(a, b);
 			t.sum   = a + b;
 			t.ok    = true;
