@@ -262,6 +262,9 @@ FilterACD::decompose(const RichParameterList& par, MeshDocument& md, vcg::CallBa
 	    idx, o.tau, d.max_part_concavity(), d.max_hull_distance(), secs,
 	    d.max_parts_reached ? " (max_parts reached: some parts exceed tau)" : "");
 	if (d.merges > 0) log("%d neighbouring parts merged after the cuts (their unions within tau)", d.merges);
+	if (d.merge_time_limit_reached)
+		log("Merging stopped at the time limit after %d merges: the parts are within tau, but more of them could merge "
+		    "(raise time_limit or set it to 0)", d.merges);
 	if (uncut > 0) log("Warning: %d parts above tau could not be cut by any candidate plane", uncut);
 	if (d.films_dropped > 0)
 		log("%d zero-thickness films (volume %g) no plane could split were dropped from parts", d.films_dropped,
@@ -282,6 +285,7 @@ FilterACD::decompose(const RichParameterList& par, MeshDocument& md, vcg::CallBa
 		{"uncut_parts", uncut},
 		{"films_dropped", d.films_dropped},
 		{"merges", d.merges},
+		{"merge_time_limit_reached", d.merge_time_limit_reached},
 		{"tree_nodes", (int) d.nodes.size()},
 		{"alpha_wrapped", run.wrap_alpha > 0},
 		{"wrap_alpha_used", run.wrap_alpha},

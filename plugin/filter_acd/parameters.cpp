@@ -139,7 +139,8 @@ void add_decomposition_parameters(RichParameterList& p, float tau, int cut_plane
 		"are harmless; a cut that would make an open part fails with a message instead); refuse: stop "
 		"with an error."));
 	p.addParam(RichFloat("time_limit", 0, "Time limit (s)",
-	                     "Stop cutting after this many seconds (0 = no limit) and return the parts found so far."));
+	                     "Stop cutting after this many seconds (0 = no limit) and return the parts found so far; merging "
+	                     "(merge_parts) shares the same limit and stops with the parts it has merged."));
 }
 
 void add_polygon_parameters(RichParameterList& p)

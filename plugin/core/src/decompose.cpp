@@ -631,6 +631,7 @@ Decomposition decompose(const Solid& solid, const DecomposeOptions& opt)
 	if (!(opt.tau > 0) || !std::isfinite(opt.tau))
 		throw Error(Error::InvalidOption, "tau must be a positive, finite length.");
 	if (opt.max_parts < 0) throw Error(Error::InvalidOption, "max_parts must be 0 (unbounded) or positive.");
+	const auto start = std::chrono::steady_clock::now();
 
 	// Work centred and at unit size: a mesh far from the origin (CAD, map coordinates) would
 	// otherwise carry rounding errors hundreds of times larger than the same mesh at the origin,
@@ -645,7 +646,12 @@ Decomposition decompose(const Solid& solid, const DecomposeOptions& opt)
 	DecomposeOptions o = opt;
 	o.tau /= s;
 	Decomposition D = Driver(o).run(unit);
-	if (o.merge_parts) merge_parts(D, o.tau, o.progress);
+	if (o.merge_parts) {
+		// The time limit bounds the cuts and the merge together; the merge gets what the cuts left.
+		const double spent = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+		const double left  = o.time_limit_seconds > 0 ? std::max(o.time_limit_seconds - spent, 1e-9) : 0;
+		merge_parts(D, o.tau, o.progress, left);
+	}
 	D.tau = opt.tau;
 	for (Node& n : D.nodes) {
 		for (Vec3& p : n.mesh.V) p = p * s + c;

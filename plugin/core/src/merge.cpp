@@ -9,11 +9,14 @@
 #include <CGAL/convex_hull_3.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <map>
 #include <optional>
 #include <queue>
 #include <set>
+#include <thread>
 
 namespace acd {
 
@@ -108,8 +111,9 @@ struct Candidate
 class Merger
 {
 public:
-	Merger(Decomposition& D, double tau, const std::function<bool(int, const char*)>& progress)
-	    : D(D), tau(tau), eps(1e-9 * extent(D.nodes[0].mesh.V)), progress(progress), heap(Later{this})
+	Merger(Decomposition& D, double tau, const std::function<bool(int, const char*)>& progress, double seconds)
+	    : D(D), tau(tau), eps(1e-9 * extent(D.nodes[0].mesh.V)), progress(progress), seconds(seconds),
+	      start(std::chrono::steady_clock::now()), heap(Later{this})
 	{
 	}
 
@@ -131,6 +135,8 @@ private:
 	Decomposition&                                  D;
 	const double                                    tau, eps;
 	const std::function<bool(int, const char*)>&    progress;
+	const double                                    seconds;   // 0: no time limit
+	const std::chrono::steady_clock::time_point     start;
 	std::vector<Group>                              groups;
 	std::vector<std::set<int>>                      nbr;
 	std::map<std::pair<int, int>, int>              contact;   // neighbouring leaves -> the cut between them
@@ -305,21 +311,44 @@ private:
 		return g;
 	}
 
-	// Unite the pairs (on all cores) and queue those that pass.
+	// True once the time limit has passed: merging stops there (what is merged stays merged).
+	bool out_of_time()
+	{
+		if (seconds > 0 && std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() > seconds)
+			D.merge_time_limit_reached = true;
+		return D.merge_time_limit_reached;
+	}
+
+	void report(const char* msg) const
+	{
+		if (progress && !progress(99, msg)) throw Error(Error::Cancelled, "The decomposition was cancelled.");
+	}
+
+	// Unite the pairs (on all cores, a batch at a time so that progress and the time limit are
+	// heard between batches) and queue those that pass.
 	void score(const std::vector<std::pair<int, int>>& pairs)
 	{
-		std::vector<std::optional<Group>> u(pairs.size());
-		parallel_for(pairs.size(), [&](size_t i) { u[i] = unite(pairs[i].first, pairs[i].second); });
-		for (size_t i = 0; i < pairs.size(); ++i) {
-			if (!u[i]) continue;
-			pool.push_back({pairs[i].first, pairs[i].second, std::move(*u[i])});
-			heap.push((int) pool.size() - 1);
+		const size_t batch = 4 * std::max(1u, std::thread::hardware_concurrency());
+		for (size_t from = 0; from < pairs.size() && !out_of_time(); from += batch) {
+			const size_t                      n = std::min(batch, pairs.size() - from);
+			std::vector<std::optional<Group>> u(n);
+			parallel_for(n, [&](size_t i) { u[i] = unite(pairs[from + i].first, pairs[from + i].second); });
+			for (size_t i = 0; i < n; ++i) {
+				if (!u[i]) continue;
+				pool.push_back({pairs[from + i].first, pairs[from + i].second, std::move(*u[i])});
+				heap.push((int) pool.size() - 1);
+			}
+			if (pairs.size() > batch) {
+				char msg[96];
+				std::snprintf(msg, sizeof msg, "Merging neighbouring parts: %zu of %zu pairs measured", from + n, pairs.size());
+				report(msg);
+			}
 		}
 	}
 
 	void greedy()
 	{
-		while (!heap.empty()) {
+		while (!heap.empty() && !out_of_time()) {
 			const int i = heap.top();
 			heap.pop();
 			const int a = pool[i].a, b = pool[i].b;
@@ -344,11 +373,9 @@ private:
 				pairs.push_back({n, g});
 			}
 			++merges;
-			if (progress) {
-				char msg[96];
-				std::snprintf(msg, sizeof msg, "Merging neighbouring parts: %d merged", merges);
-				if (!progress(99, msg)) throw Error(Error::Cancelled, "The decomposition was cancelled.");
-			}
+			char msg[96];
+			std::snprintf(msg, sizeof msg, "Merging neighbouring parts: %d merged", merges);
+			report(msg);
 			score(pairs);
 		}
 	}
@@ -395,9 +422,9 @@ std::vector<LeafContact> neighbouring_leaves(const Decomposition& D)
 	return out;
 }
 
-int merge_parts(Decomposition& D, double tau, const std::function<bool(int, const char*)>& progress)
+int merge_parts(Decomposition& D, double tau, const std::function<bool(int, const char*)>& progress, double seconds)
 {
-	return Merger(D, tau, progress).run();
+	return Merger(D, tau, progress, seconds).run();
 }
 
 } // namespace acd

@@ -4,7 +4,9 @@
 #include "check.h"
 #include "shapes.h"
 
+#include <algorithm>
 #include <set>
+#include <string>
 
 using namespace acd;
 
@@ -128,4 +130,30 @@ TEST_CASE("merge: neighbours from the caps, and merged parts that are an exact, 
 	}
 	CHECK(covered.size() == D.leaves().size());
 	CHECK_NEAR(total, signed_volume(ring), 1e-9);
+}
+
+TEST_CASE("merge: a time limit stops merging and leaves a certified partition")
+{
+	const TriMesh    ring = shapes::torus(2, 0.5, 24, 12);
+	DecomposeOptions o;
+	o.tau           = 0.05 * extent(ring.V);
+	o.merge_parts   = false;
+	const Decomposition cut = decompose(make_solid(ring), o);
+	Decomposition       D   = cut;
+	// No time left: nothing merges, and the leaves are the parts, each still within tau.
+	CHECK(merge_parts(D, o.tau, {}, 1e-9) == 0);
+	CHECK(D.merge_time_limit_reached);
+	CHECK(D.parts() == cut.parts());
+	CHECK(D.tau_convex());
+	// Time enough: the same merges as without a limit.
+	Decomposition E = cut, F = cut;
+	CHECK(merge_parts(E, o.tau, {}, 3600) == merge_parts(F, o.tau));
+	CHECK(E.merges > 0);
+	CHECK(!E.merge_time_limit_reached);
+	CHECK(E.parts().size() == F.parts().size());
+	// Progress is heard while the pairs are measured, not only once a pair has merged.
+	Decomposition    G = cut;
+	std::vector<std::string> said;
+	merge_parts(G, o.tau, [&](int, const char* msg) { return said.emplace_back(msg), true; });
+	CHECK(std::any_of(said.begin(), said.end(), [](const std::string& m) { return m.find("pairs measured") != std::string::npos; }));
 }

@@ -43,7 +43,7 @@ struct DecomposeOptions
 	int               candidate_planes = 6;   // planes around the retraction direction (Best)
 	HoleHandling      hole_handling = HoleHandling::BestPlane;
 	HoleOrder         hole_order = HoleOrder::First;
-	double            time_limit_seconds = 0; // 0 = none
+	double            time_limit_seconds = 0; // 0 = none; bounds the cuts and the merge after them
 	bool              merge_parts = true;     // merge neighbouring parts while their union is tau-convex (merge.h)
 	// Called with a percentage and a short status; return false to cancel (throws Error(Cancelled)).
 	std::function<bool(int, const char*)> progress;
@@ -83,6 +83,7 @@ struct Decomposition
 	int               films_dropped = 0;   // zero-thickness films cut off parts no plane could split
 	double            film_volume = 0;     // the volume they held (rounding: near 0)
 	int               merges = 0;          // neighbouring parts merged after the cuts
+	bool              merge_time_limit_reached = false;   // merging stopped by the time limit (parts still certified)
 	// The cut tree's leaves in a stable order (by tree path).
 	std::vector<int> leaves() const;
 	// The parts: the leaves not merged and the merged parts, by their (first leaf's) path.

@@ -15,8 +15,10 @@ namespace acd {
 // tau, one shell, no cavity. Unions are exact (CGAL corefinement), so the parts stay an exact
 // partition of the solid. The cut tree is kept as it is; each merged part is appended as a node
 // whose `merged` lists the leaves it unites, and those leaves point to it with `part`. Leaves over
-// tau (uncut) are never merged. Returns the number of merges.
-int merge_parts(Decomposition& D, double tau, const std::function<bool(int, const char*)>& progress = {});
+// tau (uncut) are never merged. With `seconds` > 0 merging stops once that long has passed (the parts
+// stay a certified partition; D.merge_time_limit_reached says so). Returns the number of merges.
+int merge_parts(Decomposition& D, double tau, const std::function<bool(int, const char*)>& progress = {},
+                double seconds = 0);
 
 // Neighbouring leaves (node ids a < b): on the two sides of the cut at node `cut`, their caps on its
 // plane overlapping with positive area.
