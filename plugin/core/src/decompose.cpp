@@ -435,6 +435,25 @@ private:
 		c.trials.assign(c.planes.size(), Trial());
 	}
 
+	// Whether a plane cuts through a cavity (its faces on both sides).
+	static bool crosses(const TriMesh& mesh, const std::vector<int>& cavity, const Plane& pl)
+	{
+		bool neg = false, pos = false;
+		for (int f : cavity)
+			for (int v : mesh.F[f]) (pl.eval(mesh.V[v]) > 0 ? pos : neg) = true;
+		return neg && pos;
+	}
+
+	// A plane that takes a chip (volume va or vb, concavity a or b) itself over tau and leaves the rest
+	// as concave as the node resolves nothing: two nodes to cut for one, and picked, it would be
+	// picked again on the rest, chip after chip.
+	bool chips(int id, double va, double vb, double a, double b) const
+	{
+		const bool   first = va < vb;
+		const double chip = first ? a : b, rest = first ? b : a;
+		return std::min(va, vb) < 1e-3 * D.nodes[id].volume && chip > opt.tau && rest >= 0.99 * D.nodes[id].concavity;
+	}
+
 	// Split the node by candidate i and, with `score`, measure the parts. Trials are independent
 	// (each writes its own slot), so they run on all cores.
 	void trial(Cut& c, size_t i, bool score) const
@@ -452,12 +471,7 @@ private:
 			return;
 		}
 		if (keep)
-			for (const auto& cav : ms.cavities) {
-				bool neg = false, pos = false;
-				for (int f : cav)
-					for (int v : mesh.F[f]) (c.planes[i].eval(mesh.V[v]) > 0 ? pos : neg) = true;
-				t.crosses |= neg && pos;
-			}
+			for (const auto& cav : ms.cavities) t.crosses |= crosses(mesh, cav, c.planes[i]);
 		if (!score) {
 			t.ok = true;
 			return;
@@ -469,12 +483,8 @@ private:
 		}
 		try {
 			const double a = part_concavity(t.so.parts[0], keep, opt.tau), b = part_concavity(t.so.parts[1], keep, opt.tau);
-			// Nor does one that takes a chip itself over tau and leaves the rest as concave as the
-			// node: two nodes to cut for one, and picked, it would be picked again on the rest.
-			const int    small = va < vb ? 0 : 1;
-			const double chip = small ? b : a, rest = small ? a : b;
-			if (std::min(va, vb) < 1e-3 * v0 && chip > opt.tau && rest >= 0.99 * D.nodes[c.id].concavity) {
-				t.sliver = small;
+			if (chips(c.id, va, vb, a, b)) {
+				t.sliver = va < vb ? 0 : 1;
 				return;
 			}
 			t.score = std::max(a, b);
