@@ -66,7 +66,7 @@ def cases():
         yield f"hollow box {hh}", hollow_box, "decompose", dict(hole_handling=hh)
     yield "hollow box by_concavity", hollow_box, "decompose", dict(hole_order="by_concavity")
     bunny = pathlib.Path(pymeshlab.__file__).parent / "tests" / "sample_meshes" / "bunny.obj"
-    yield "bunny best", lambda ms: ms.load_new_mesh(str(bunny)), "decompose", {}
+    yield "bunny default", lambda ms: ms.load_new_mesh(str(bunny)), "decompose", {}
     yield "bunny max_parts 5", lambda ms: ms.load_new_mesh(str(bunny)), "decompose", dict(max_parts=5)
     yield "keyway skeleton", lambda ms: solid(ms, "keyway"), "skeleton", {}
     yield "flange hull union", lambda ms: solid(ms, "flange"), "union", {}

@@ -17,7 +17,7 @@ cad_solids = pytest.importorskip("cad_solids")
 pytest.importorskip("manifold3d")
 pytest.importorskip("scipy")
 
-SELECTIONS = ["best", "bisector", "min_section"]
+SELECTIONS = ["best", "bisector", "min_section", "bisector_or_face"]
 
 
 def decompose_solid(name, tau, selection):

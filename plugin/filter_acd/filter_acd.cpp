@@ -176,7 +176,7 @@ RichParameterList FilterACD::initParameterList(const QAction* a, const MeshModel
 		                     "middle of that width (the chord runs along one side of a bent piece)."));
 		return p;
 	case HULL_UNION:
-		acdml::add_decomposition_parameters(p, 5.0, 0, false, true, true);
+		acdml::add_decomposition_parameters(p, 5.0, 3, false, true, true);
 		p.addParam(RichEnum("merge", 0, QStringList{"together", "boolean_union"}, "Merged layer",
 		                    "together: the hulls in one layer (overlapping shells; fast); boolean_union: their true "
 		                    "union by CGAL corefinement with exact constructions (one closed surface; slower)."));
@@ -184,7 +184,7 @@ RichParameterList FilterACD::initParameterList(const QAction* a, const MeshModel
 		                   "Monte Carlo samples for the volume IoU between the union and the mesh."));
 		return p;
 	default:
-		acdml::add_decomposition_parameters(p, 2.0, 0, true, true, true);
+		acdml::add_decomposition_parameters(p, 2.0, 3, true, true, true);
 		p.addParam(RichString("tree_file", "", "Save tree as (JSON)",
 		                      "If set, the whole cut tree (nodes, parents, paths, planes, concavity, volume) is "
 		                      "written to this JSON file; layer names are the leaves' paths. Empty: not written.",

@@ -33,9 +33,11 @@ template <class E, size_t N> E chosen(const RichParameterList& par, const char* 
 enum class TauUnit { PercentOfSize, ModelUnits };
 
 const Choices<TauUnit, 2> kTauUnits = {{{"percent_of_size", TauUnit::PercentOfSize}, {"model_units", TauUnit::ModelUnits}}};
-const Choices<acd::CutPlaneSelection, 3> kCutPlanes = {{{"best", acd::CutPlaneSelection::Best},
+// New choices go last: .mlx scripts store the index.
+const Choices<acd::CutPlaneSelection, 4> kCutPlanes = {{{"best", acd::CutPlaneSelection::Best},
                                                         {"bisector", acd::CutPlaneSelection::Bisector},
-                                                        {"min_section", acd::CutPlaneSelection::MinSection}}};
+                                                        {"min_section", acd::CutPlaneSelection::MinSection},
+                                                        {"bisector_or_face", acd::CutPlaneSelection::BisectorOrFace}}};
 const Choices<acd::CutLineSelection, 2> kCutLines = {{{"best", acd::CutLineSelection::Best},
                                                       {"bisector", acd::CutLineSelection::Bisector}}};
 const Choices<acd::HoleHandling, 3> kCavityCuts = {{{"best_plane", acd::HoleHandling::BestPlane},
@@ -93,7 +95,9 @@ void add_decomposition_parameters(RichParameterList& p, float tau, int cut_plane
 		"direction, the plane parallel to its bridge) and keep the one leaving the least concave parts; "
 		"bisector: the paper's plane through the notch edge bisecting its reflex angle (faster); "
 		"min_section: of the planes through the notch and its retraction direction, the one cutting the "
-		"smallest cross-section (the neck), which surface noise hardly moves (the skeleton's default)."));
+		"smallest cross-section (the neck), which surface noise hardly moves (the skeleton's default); "
+		"bisector_or_face: the bisector, or at a sharp notch edge (a CAD step, slot or flange) one of its two "
+		"faces extended when that leaves clearly less concave parts (near the bisector's speed)."));
 	p.addParam(RichEnum(
 		"hole_handling", 0, labels(kCavityCuts), "Cavities (hole boundaries)",
 		"How closed inner shells (cavities) are resolved; their notches never reach the hull. "

@@ -4,7 +4,7 @@ convex_decomposition all start from these values (the filters keep MeshLab's own
 DEFAULTS = dict(
     tau=2.0,                        # concavity tolerance, % of the size (tau_unit) or model units
     tau_unit="percent_of_size",
-    cut_plane_selection="best",     # best | bisector | min_section
+    cut_plane_selection="bisector_or_face",   # bisector_or_face | best | bisector | min_section
     max_parts=0,                    # 0: no limit
     merge_parts=True,               # merge neighbouring parts while their union stays within tau
     max_hull_vertices=0,            # per collision hull; 0: the exact hull
@@ -33,7 +33,7 @@ HELP = dict(
     time_limit="stop cutting after this many seconds (0: none)",
 )
 
-CHOICES = dict(tau_unit=["percent_of_size", "model_units"], cut_plane_selection=["best", "bisector", "min_section"],
+CHOICES = dict(tau_unit=["percent_of_size", "model_units"], cut_plane_selection=["best", "bisector", "min_section", "bisector_or_face"],
                preprocessing=["auto", "none", "alpha_wrap"])
 
 

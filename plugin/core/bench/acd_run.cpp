@@ -1,5 +1,5 @@
 // Decompose an OBJ file from the command line (for profiling the core without MeshLab):
-//   acd_run mesh.obj tau_percent [bisector|best][+merge] [max_parts]
+//   acd_run mesh.obj tau_percent [bisector|best|bisector_or_face][+merge] [max_parts]
 #include "acd/decompose.h"
 #include "obj_io.h"
 
@@ -10,7 +10,7 @@
 int main(int argc, char** argv)
 {
 	if (argc < 3) {
-		std::fprintf(stderr, "usage: %s mesh.obj tau_percent [bisector|best][+merge] [max_parts]\n", argv[0]);
+		std::fprintf(stderr, "usage: %s mesh.obj tau_percent [bisector|best|bisector_or_face][+merge] [max_parts]\n", argv[0]);
 		return 2;
 	}
 	acd::TriMesh m = acd::bench::read_obj(argv[1]);
@@ -20,7 +20,8 @@ int main(int argc, char** argv)
 		acd::DecomposeOptions o;
 		o.tau = std::atof(argv[2]) / 100 * acd::enclosing_diameter(s.mesh.V);
 		const std::string sel = argc > 3 ? argv[3] : "";
-		if (sel.rfind("bisector", 0) == 0) o.cut_plane_selection = acd::CutPlaneSelection::Bisector;
+		if (sel.rfind("bisector_or_face", 0) == 0) o.cut_plane_selection = acd::CutPlaneSelection::BisectorOrFace;
+		else if (sel.rfind("bisector", 0) == 0) o.cut_plane_selection = acd::CutPlaneSelection::Bisector;
 		o.merge_parts = sel.find("+merge") != std::string::npos;
 		if (argc > 4) o.max_parts = std::atoi(argv[4]);
 		o.progress = [](int p, const char* msg) {

@@ -171,8 +171,10 @@ std::vector<Plane> cavity_planes(const TriMesh& m, const std::vector<int>& faces
 }
 
 std::vector<Plane> candidate_planes(const TriMesh& m, const Topology& topo, const ConvexHull& hull,
-                                    const ConcavityReport& rep, CutPlaneSelection sel, int around)
+                                    const ConcavityReport& rep, CutPlaneSelection sel, int around,
+                                    CutPlaneSelection* used)
 {
+	if (used) *used = sel;
 	std::vector<Plane> out;
 	const int          r = rep.max_vertex;
 	if (r < 0) return out;
@@ -211,11 +213,19 @@ std::vector<Plane> candidate_planes(const TriMesh& m, const Topology& topo, cons
 		}
 	}
 	if (sel != CutPlaneSelection::MinSection && best > 0 && bis.norm() > 1e-12) out.push_back(through(p, edge.cross(bis)));
-	if (sel == CutPlaneSelection::Bisector && !out.empty()) return out;
 	// The notch's two faces extended: a CAD step, slot or flange is cut off along its own face. Only
 	// at a sharp reflex edge (30 degrees or more from flat): on a smooth or wrapped surface the faces'
 	// planes are near-tangent slices.
-	if (sel == CutPlaneSelection::Best && best > 0 && faces[0].cross(faces[1]).norm() >= 0.5)
+	const bool sharp = best > 0 && faces[0].cross(faces[1]).norm() >= 0.5;
+	if (sel == CutPlaneSelection::BisectorOrFace && !(sharp && !out.empty())) sel = CutPlaneSelection::Bisector;
+	if (used) *used = sel;
+	if (sel == CutPlaneSelection::Bisector && !out.empty()) return out;
+	if (sel == CutPlaneSelection::BisectorOrFace) {
+		// After the bisector, in the part's frame's order: a tie goes the same way in any pose.
+		if (frame.before(p + faces[1], p + faces[0])) std::swap(faces[0], faces[1]);
+		return {out[0], through(p, faces[0]), through(p, faces[1])};
+	}
+	if (sel == CutPlaneSelection::Best && sharp)
 		for (const Vec3& n : faces) out.push_back(through(p, n));
 
 	// Planes containing the retraction direction (the bridge's normal), at evenly spread angles
@@ -420,7 +430,7 @@ private:
 			// A notch on the hull itself has no way out to turn a neck's planes around: the paper's
 			// bisector it is.
 			if (c.sel == CutPlaneSelection::MinSection && !retraction(ms.hull, c.notch)) c.sel = CutPlaneSelection::Bisector;
-			c.planes = candidate_planes(ms.surface(mesh), ms.topo, ms.hull, ms.rep, c.sel, opt.candidate_planes);
+			c.planes = candidate_planes(ms.surface(mesh), ms.topo, ms.hull, ms.rep, c.sel, opt.candidate_planes, &c.sel);
 			if (c.sel == CutPlaneSelection::Bisector && c.planes.size() == 1) {
 				// Fall back to the other candidates only if the bisector cannot split.
 				auto more = candidate_planes(ms.surface(mesh), ms.topo, ms.hull, ms.rep, CutPlaneSelection::Best,

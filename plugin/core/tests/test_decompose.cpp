@@ -31,7 +31,8 @@ TEST_CASE("convex gives one part")
 
 TEST_CASE("l u plus known counts")
 {
-	for (auto sel : {CutPlaneSelection::Bisector, CutPlaneSelection::Best, CutPlaneSelection::MinSection}) {
+	for (auto sel : {CutPlaneSelection::Bisector, CutPlaneSelection::Best, CutPlaneSelection::MinSection,
+	                 CutPlaneSelection::BisectorOrFace}) {
 		TriMesh L = shapes::extrude(shapes::l_shape(), 0, 0.5);
 		auto    d = run(L, 0.01, sel);
 		CHECK(d.leaves().size() == 2);
@@ -54,6 +55,28 @@ TEST_CASE("torus needs at least three parts")
 	auto    d = run(T, 0.1);
 	CHECK(d.leaves().size() >= 3);
 	check_partition(T, d);
+}
+
+TEST_CASE("bisector or face cuts a stepped shaft at its steps")
+{
+	// Three coaxial cylinders (r 3, 2, 1.2): three convex pieces exist. The bisector crosses each step's
+	// reflex ring at 45 degrees and slices the cylinders; the step's own face, extended, cuts it off.
+	const TriMesh shaft = shapes::lathe({{0, 0}, {3, 0}, {3, 10}, {2, 10}, {2, 20}, {1.2, 20}, {1.2, 26}, {0, 26}}, 48);
+	const double  tau   = 0.02 * extent(shaft.V);
+	const auto    face  = run(shaft, tau, CutPlaneSelection::BisectorOrFace);
+	const auto    bis   = run(shaft, tau, CutPlaneSelection::Bisector);
+	CHECK(face.leaves().size() == 3);
+	CHECK(bis.leaves().size() > 3);   // the test tells the two apart
+	check_partition(shaft, face);
+	for (int i : face.leaves()) {
+		CHECK(face.nodes[i].concavity <= tau);
+		CHECK(face.nodes[i].hull_distance_bound <= 1.01 * tau);
+	}
+	// Smooth notches (faces under 30 degrees apart) have no face to extend: the bisector's cuts, exactly.
+	const TriMesh ring = shapes::torus(2, 0.5, 48, 16);
+	const auto    a = run(ring, 0.1, CutPlaneSelection::BisectorOrFace), b = run(ring, 0.1, CutPlaneSelection::Bisector);
+	REQUIRE(a.nodes.size() == b.nodes.size());
+	for (size_t k = 0; k < a.nodes.size(); ++k) CHECK(a.nodes[k].mesh.V == b.nodes[k].mesh.V);
 }
 
 TEST_CASE("min section cuts the neck")

@@ -48,7 +48,8 @@ TEST_CASE("every leaf of a ring is certified")
 	Solid            s = make_solid(shapes::torus(2, 0.5, 16, 4));
 	DecomposeOptions o;
 	o.tau = 0.6;   // above the notches' 0.5: only the hole's reach calls for cuts
-	for (CutPlaneSelection sel : {CutPlaneSelection::Best, CutPlaneSelection::Bisector, CutPlaneSelection::MinSection}) {
+	for (CutPlaneSelection sel : {CutPlaneSelection::Best, CutPlaneSelection::Bisector, CutPlaneSelection::MinSection,
+	                               CutPlaneSelection::BisectorOrFace}) {
 		o.cut_plane_selection = sel;
 		const Decomposition d = decompose(s, o);
 		CHECK(d.leaves().size() > 1);

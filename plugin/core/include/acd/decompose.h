@@ -15,8 +15,10 @@ enum class CutPlaneSelection
 	Bisector,   // the paper: through the notch edge, bisecting its reflex dihedral angle
 	Best,       // several planes through the notch (bisector, around its retraction direction,
 	            // parallel to its bridge), keeping the one whose parts are least concave
-	MinSection  // (3D; polygons take Best) the neck: the plane through the notch and its retraction direction whose cut
+	MinSection, // (3D; polygons take Best) the neck: the plane through the notch and its retraction direction whose cut
 	            // cross-section is smallest (steady under surface noise; the skeleton's choice)
+	BisectorOrFace  // (3D) the bisector, or at a sharp notch edge (a CAD step, slot or flange) one of its two
+	                // faces extended when that leaves clearly less concave parts; elsewhere as Bisector
 };
 
 // Cavities (closed inner shells) are the paper's hole boundaries: their notches can never retract to
@@ -38,7 +40,7 @@ enum class HoleOrder
 struct DecomposeOptions
 {
 	double            tau = 0;   // model units; > 0
-	CutPlaneSelection cut_plane_selection = CutPlaneSelection::Best;
+	CutPlaneSelection cut_plane_selection = CutPlaneSelection::BisectorOrFace;
 	int               max_parts = 0;          // 0 = unbounded
 	int               candidate_planes = 6;   // planes around the retraction direction (Best)
 	HoleHandling      hole_handling = HoleHandling::BestPlane;
@@ -115,9 +117,11 @@ TriMesh rebuild_solid(const Decomposition& D, int id);
 
 Decomposition decompose(const Solid& solid, const DecomposeOptions& options);
 
-// Candidate cutting planes through the notch vertex `r` of mesh `m`, best guess first.
+// Candidate cutting planes through the notch vertex `r` of mesh `m`, best guess first. `used`, if
+// given, receives the selection they follow (BisectorOrFace at an edge that is not sharp: Bisector).
 std::vector<Plane> candidate_planes(const TriMesh& m, const Topology& topo, const ConvexHull& hull,
-                                    const ConcavityReport& rep, CutPlaneSelection sel, int around);
+                                    const ConcavityReport& rep, CutPlaneSelection sel, int around,
+                                    CutPlaneSelection* used = nullptr);
 
 // Planes through a cavity (its vertices `cavity` of `m`) for hole_handling, the paper's first:
 // the principal plane (normal: the minor axis of the cavity surface's area-weighted covariance), then
