@@ -90,14 +90,21 @@ TEST_CASE("glue: caps triangulated differently on the two sides cross, and still
 	CHECK_NEAR(area_on_plane, 1.0, 1e-12);
 }
 
+// Options cutting `m` at tau = `share` of its size, merging off (the leaves, ready to merge).
+static DecomposeOptions unmerged(const TriMesh& m, double share)
+{
+	DecomposeOptions o;
+	o.tau         = share * extent(m.V);
+	o.merge_parts = false;
+	return o;
+}
+
 TEST_CASE("merge: neighbours from the caps, and merged parts that are an exact, certified partition")
 {
 	// A ring: the cuts around it, each made for the notch left most concave, leave neighbouring
 	// arcs that are convex enough together.
 	const TriMesh    ring = shapes::torus(2, 0.5, 24, 12);
-	DecomposeOptions o;
-	o.tau = 0.05 * extent(ring.V);
-	o.merge_parts = false;
+	DecomposeOptions o    = unmerged(ring, 0.05);
 	const Decomposition cut = decompose(make_solid(ring), o);
 	o.merge_parts           = true;
 	const Decomposition D   = decompose(make_solid(ring), o);
@@ -134,11 +141,9 @@ TEST_CASE("merge: neighbours from the caps, and merged parts that are an exact, 
 
 TEST_CASE("merge: a time limit stops merging and leaves a certified partition")
 {
-	const TriMesh    ring = shapes::torus(2, 0.5, 24, 12);
-	DecomposeOptions o;
-	o.tau           = 0.05 * extent(ring.V);
-	o.merge_parts   = false;
-	const Decomposition cut = decompose(make_solid(ring), o);
+	const TriMesh          ring = shapes::torus(2, 0.5, 24, 12);
+	const DecomposeOptions o    = unmerged(ring, 0.05);
+	const Decomposition    cut  = decompose(make_solid(ring), o);
 	Decomposition       D   = cut;
 	// No time left: nothing merges, and the leaves are the parts, each still within tau.
 	CHECK(merge_parts(D, o.tau, {}, 1e-9) == 0);
