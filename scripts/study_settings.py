@@ -6,8 +6,8 @@
 
     python3 scripts/study_settings.py --settings best:2:0,best:2:1,bisector:3:1 [--out out/study.jsonl]
 
-With the peers' published rows (docs/robots/robots-peers.json) it also prints, per setting, the issue's
-criteria as bench_robots' front() computes them for the default setting.
+With the peers' published rows (docs/robots/robots-peers.json) it also prints, per setting, the
+comparison with the peers that bench_robots' front() prints for the default setting.
 
 A setting is selection:tau:merge (merge 1 or 0). Rows are appended to --out (a rerun skips the rows
 it has) and the summary table is printed from them: medians over the meshes every setting finished.
@@ -65,13 +65,8 @@ def summary(rows, settings, peers):
                   f"{100 * med(c['hull_error'] for c in cs):.2f} | | | {sum(c['time'] for c in cs):.0f} |")
     faces = {r["mesh"]: r["faces"] for r in peers}
     for s in settings:
-        keyed = {}
-        for r in peers:
-            keyed.setdefault(r["mesh"], {})[(r["method"], r["setting"])] = r
-        for m, d in done.items():
-            if m in keyed and s in d:
-                keyed[m][("ours", s)] = dict(d[s], faces=faces[m])
-        print(f"\n{s}: " + " ".join(br.front(keyed, ours=("ours", s))))
+        ours = [dict(d[s], method="ours", setting=s, faces=faces[m]) for m, d in done.items() if s in d and m in faces]
+        print(f"\n{s}: " + " ".join(br.front(br.sample_rows(peers + ours), ours=("ours", s))))
 
 
 def main():

@@ -36,7 +36,7 @@ int main(int argc, char** argv)
 		            d.max_hull_distance(), d.merges, d.time_limit_reached);
 		for (int i : d.parts()) {   // the parts that break the certificate, for diagnosis
 			const acd::Node& n = d.nodes[i];
-			if (n.uncut || n.concavity > d.tau || n.hull_distance_bound > 1.01 * d.tau)
+			if (!d.certified(i))
 				std::printf("  part %s: concavity %.4g tau, hull %.4g..%.4g tau, uncut %d, faces %zu\n",
 				            n.path.c_str(), n.concavity / d.tau, n.hull_distance / d.tau,
 				            n.hull_distance_bound / d.tau, n.uncut, n.mesh.F.size());

@@ -278,13 +278,17 @@ double Decomposition::max_hull_distance() const
 	return c;
 }
 
+bool Decomposition::certified(int id) const
+{
+	const Node& n = nodes[id];
+	// 1% of tau is the slack the reach is refined to; the rest is rounding.
+	return !n.uncut && n.concavity <= tau && n.hull_distance_bound <= 1.01 * tau * (1 + 1e-9);
+}
+
 bool Decomposition::tau_convex() const
 {
-	for (int i : parts()) {
-		const Node& n = nodes[i];
-		// 1% of tau is the slack the reach is refined to; the rest is rounding.
-		if (n.uncut || n.concavity > tau || n.hull_distance_bound > 1.01 * tau * (1 + 1e-9)) return false;
-	}
+	for (int i : parts())
+		if (!certified(i)) return false;
 	return kept_cavities == 0 && !max_parts_reached && !time_limit_reached;
 }
 

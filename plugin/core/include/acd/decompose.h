@@ -92,8 +92,9 @@ struct Decomposition
 	std::vector<int> parts() const;
 	double           max_part_concavity() const;
 	double           max_hull_distance() const;   // over the parts
-	// The certificate: every part within tau by both measures (its hull to 1% of tau), none left
-	// uncut, no cavity kept, no limit reached.
+	// Node `id` within tau by both measures (its hull to 1% of tau) and not left uncut.
+	bool             certified(int id) const;
+	// The certificate: every part certified, no cavity kept, no limit reached.
 	bool             tau_convex() const;
 };
 
