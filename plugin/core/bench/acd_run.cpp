@@ -1,6 +1,8 @@
 // Decompose an OBJ file from the command line (for profiling the core without MeshLab):
-//   acd_run mesh.obj tau_percent [bisector|best|bisector_or_face][+merge] [max_parts]
+//   acd_run mesh.obj tau_percent [bisector_or_face|bisector|best|min_section][+merge] [max_parts]
+// ACD_RUN_WRAP=alpha_percent wraps the mesh first as preprocessing = auto does (welded or wrapped).
 #include "acd/decompose.h"
+#include "acd/wrap_solid.h"
 #include "obj_io.h"
 
 #include <chrono>
@@ -10,18 +12,26 @@
 int main(int argc, char** argv)
 {
 	if (argc < 3) {
-		std::fprintf(stderr, "usage: %s mesh.obj tau_percent [bisector|best|bisector_or_face][+merge] [max_parts]\n", argv[0]);
+		std::fprintf(stderr, "usage: %s mesh.obj tau_percent [bisector_or_face|bisector|best|min_section][+merge] [max_parts]\n", argv[0]);
 		return 2;
 	}
 	acd::TriMesh m = acd::bench::read_obj(argv[1]);
 	try {
-		auto                  t0 = std::chrono::steady_clock::now();
-		acd::Solid            s  = acd::make_solid(m);
+		auto t0 = std::chrono::steady_clock::now();
+		if (const char* a = std::getenv("ACD_RUN_WRAP")) {   // preprocessing auto: alpha a% of size, offset 0.1%
+			const double d = acd::enclosing_diameter(m.V);
+			m              = acd::wrap_solid(m, std::atof(a) / 100 * d, 0.001 * d, 0.16 * d).mesh;
+			std::printf("wrapped: %zu faces in %.3f s\n", m.F.size(),
+			            std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+		}
+		acd::Solid s = acd::make_solid(m);
 		acd::DecomposeOptions o;
 		o.tau = std::atof(argv[2]) / 100 * acd::enclosing_diameter(s.mesh.V);
 		const std::string sel = argc > 3 ? argv[3] : "";
 		if (sel.rfind("bisector_or_face", 0) == 0) o.cut_plane_selection = acd::CutPlaneSelection::BisectorOrFace;
 		else if (sel.rfind("bisector", 0) == 0) o.cut_plane_selection = acd::CutPlaneSelection::Bisector;
+		else if (sel.rfind("best", 0) == 0) o.cut_plane_selection = acd::CutPlaneSelection::Best;
+		else if (sel.rfind("min_section", 0) == 0) o.cut_plane_selection = acd::CutPlaneSelection::MinSection;
 		o.merge_parts = sel.find("+merge") != std::string::npos;
 		if (argc > 4) o.max_parts = std::atoi(argv[4]);
 		o.progress = [](int p, const char* msg) {
@@ -40,6 +50,15 @@ int main(int argc, char** argv)
 				std::printf("  part %s: concavity %.4g tau, hull %.4g..%.4g tau, uncut %d, faces %zu\n",
 				            n.path.c_str(), n.concavity / d.tau, n.hull_distance / d.tau,
 				            n.hull_distance_bound / d.tau, n.uncut, n.mesh.F.size());
+			if (!d.certified(i) && std::getenv("ACD_RUN_TRACE"))   // its ancestors: how each cut split them
+				for (const acd::Node& a : d.nodes)
+					if (a.has_plane && n.path.rfind(a.path, 0) == 0) {
+						const acd::Node& kept = d.nodes[a.child[n.path[a.path.size()] - '0']];
+						const acd::Node& off  = d.nodes[a.child['1' - n.path[a.path.size()]]];
+						std::printf("    depth %3zu: concavity %.4g tau -> kept %.4g tau (volume %.4g), off %.4g tau (volume %.3g)\n",
+						            a.path.size(), a.concavity / d.tau, kept.concavity / d.tau, kept.volume / a.volume,
+						            off.concavity / d.tau, off.volume / a.volume);
+					}
 		}
 		if (const char* dump = std::getenv("ACD_RUN_PARTS"))   // every part, one object each
 			acd::bench::write_obj_objects(dump, [&] {

@@ -23,6 +23,7 @@
 #include <set>
 #include <sstream>
 #include <unordered_map>
+#include <unordered_set>
 
 namespace acd {
 
@@ -302,6 +303,7 @@ struct Trial
 	bool         crosses = false;   // keep_cavities: the plane cuts through a kept cavity
 	double       score = 0, sum = 0;
 	int          sliver = -1;       // the side a rejected plane shaved off
+	double       smaller = 0;       // the smaller side's share of the volume
 };
 
 // One node's cut: its target (the most concave notch, or a cavity), the candidate planes, their trials.
@@ -315,6 +317,7 @@ struct Cut
 	std::vector<Trial> trials;
 	bool               first_fit  = false;   // try planes in order, keep the first that splits
 	bool               by_section = false;   // score by the cut's cross-section (MinSection)
+	bool               stalled = false;      // the node's own cut made no progress: this one must
 	int                pick = -1;
 };
 
@@ -338,10 +341,13 @@ public:
 		c.id = id;
 		choose_target(c);
 		candidate_planes_for(c);
+		unstall(c);
 		try_planes(c);
 		pick_plane(c);
+		widen(c);
 		refine_neck(c);
-		if (c.pick < 0) halve(c);
+		if (c.pick < 0 && halved_before(id) && drop_film(c)) return 0;
+		if (c.pick < 0 && halve(c)) halved.insert(id);
 		if (c.pick < 0 && drop_film(c)) return 0;
 		return accept(c);
 	}
@@ -351,6 +357,7 @@ public:
 private:
 	std::vector<std::unique_ptr<Measured>> measured;   // kept while a node waits to be cut
 	std::unordered_map<int, int>           films;      // per node: films dropped (bounded)
+	std::unordered_set<int>                halved;     // nodes cut by halve()
 
 	int add_node(TriMesh mesh, int parent, const std::string& path)
 	{
@@ -480,6 +487,7 @@ private:
 		if (!separate(mesh, c.planes[i], c.notch, t.so)) return;
 		// A plane that grazes the part shaves off a sliver and resolves nothing.
 		const double va = signed_volume(t.so.parts[0]), vb = signed_volume(t.so.parts[1]);
+		t.smaller       = std::min(va, vb) / v0;
 		if (va < 1e-5 * v0 || vb < 1e-5 * v0) {
 			t.sliver = va < vb ? 0 : 1;
 			return;
@@ -507,6 +515,40 @@ private:
 		}
 		catch (const Error&) {   // a part with no volume
 		}
+	}
+
+	// A cut that takes a small piece off and leaves the same notch as deep (a notch on a thin shell,
+	// where the bisector runs along the surface) resolves nothing, and the rest would be cut the same
+	// way, piece after piece, down to the depth bound. A node made by such a cut must progress: its
+	// candidates, the principal planes through its centroid among them, are all scored, and only
+	// those that take a real piece off or leave it clearly less concave may be picked.
+	bool stalled(int id) const
+	{
+		const Node& n = D.nodes[id];
+		if (n.parent < 0 || D.nodes[n.parent].solids) return false;
+		const Node& p = D.nodes[n.parent];
+		return n.volume >= 0.99 * p.volume && n.concavity >= 0.99 * p.concavity && (n.notch - p.notch).norm() <= opt.tau;
+	}
+
+	bool progresses(const Cut& c, const Trial& t) const
+	{
+		return t.smaller >= 0.01 || t.score < 0.99 * D.nodes[c.id].concavity;
+	}
+
+	void unstall(Cut& c) const
+	{
+		if (c.hole >= 0 || !stalled(c.id)) return;
+		const TriMesh&  mesh = D.nodes[c.id].mesh;
+		const Measured& ms   = *measured[c.id];
+		c.stalled            = true;
+		c.first_fit = c.by_section = false;
+		if (c.sel != CutPlaneSelection::Best) {
+			auto more = candidate_planes(ms.surface(mesh), ms.topo, ms.hull, ms.rep, CutPlaneSelection::Best, opt.candidate_planes);
+			c.planes.insert(c.planes.end(), more.begin(), more.end());
+		}
+		const Vec3 centre = surface_moments(mesh, Vec3::Zero()).centroid;
+		for (int k = 0; k < 3; ++k) c.planes.push_back(through(centre, ms.rep.frame.axes.row(k).transpose()));
+		c.trials.assign(c.planes.size(), Trial());
 	}
 
 	// A notch charged with its bridge's reach (no vertex shows that depth) has a dihedral angle that
@@ -542,16 +584,32 @@ private:
 		for (const bool allow_crossing : {false, true}) {   // planes that spare kept cavities first
 			for (int i = 0; i < (int) T.size(); ++i) {
 				const Trial& t = T[i];
-				if (!t.ok || (t.crosses && !allow_crossing)) continue;
+				if (!t.ok || (t.crosses && !allow_crossing) || (c.stalled && !progresses(c, t))) continue;
 				if (pick < 0 || t.score < T[pick].score - hair || (t.score <= T[pick].score + hair && t.sum < T[pick].sum - hair))
 					pick = i;
 			}
 			if (pick >= 0) break;
 		}
 		// For a notch (not a cavity, whose planes are all scored alike): see above.
-		if (c.hole < 0 && !c.by_section && pick > 0 && T[0].ok && !T[0].crosses && !(T[pick].score < 0.9 * T[0].score))
+		if (c.hole < 0 && !c.by_section && pick > 0 && T[0].ok && !T[0].crosses && !(c.stalled && !progresses(c, T[0])) &&
+		    !(T[pick].score < 0.9 * T[0].score))
 			pick = 0;
 		c.pick = pick;
+	}
+
+	// At a sharp edge no plane of the edge splits (each shaves a sliver off): the notch's other
+	// planes are scored, as the bisector falls back to them, before the part is halved.
+	void widen(Cut& c) const
+	{
+		if (c.pick >= 0 || c.hole >= 0 || c.stalled || c.sel != CutPlaneSelection::BisectorOrFace) return;
+		const TriMesh&  mesh = D.nodes[c.id].mesh;
+		const Measured& ms   = *measured[c.id];
+		auto         more = candidate_planes(ms.surface(mesh), ms.topo, ms.hull, ms.rep, CutPlaneSelection::Best, opt.candidate_planes);
+		const size_t from = c.planes.size();
+		c.planes.insert(c.planes.end(), more.begin() + std::min<size_t>(1, more.size()), more.end());
+		c.trials.resize(c.planes.size());
+		parallel_for(c.planes.size() - from, [&](size_t i) { trial(c, from + i, true); });
+		pick_plane(c);
 	}
 
 	// The fan samples the section's area every pi/K: the parabola through the smallest and its
@@ -574,8 +632,9 @@ private:
 
 	// No candidate splits (the notch sits where every plane through it shaves a sliver): halve the
 	// part across its principal axes instead, so that it still shrinks towards tau. A curved strip
-	// crossed in its middle falls in three pieces: then cut nearer an end along the same axes.
-	void halve(Cut& c) const
+	// crossed in its middle falls in three pieces: then cut nearer an end along the same axes. True
+	// if it did.
+	bool halve(Cut& c) const
 	{
 		const TriMesh& mesh   = D.nodes[c.id].mesh;
 		const Vec3     centre = surface_moments(mesh, Vec3::Zero()).centroid;
@@ -590,7 +649,12 @@ private:
 				trial(c, c.planes.size() - 1, false);
 				if (c.trials.back().ok) c.pick = (int) c.planes.size() - 1;
 			}
+		return c.pick >= 0;
 	}
+
+	// A half of a halved part that no plane splits either: a film is the likelier cause, which
+	// halving would keep in one half, to be halved again, so it is dropped first.
+	bool halved_before(int id) const { return D.nodes[id].parent >= 0 && halved.count(D.nodes[id].parent) > 0; }
 
 	// Still none: the part may carry a film, two sheets of its surface a rounding error apart (a cut
 	// plane a hair off a flat face leaves one). It holds no volume, yet its hull may reach far: drop
