@@ -9,6 +9,27 @@
 #include <cstdio>
 #include <cstdlib>
 
+// The parts that break the certificate, for diagnosis; with ACD_RUN_TRACE, each one's ancestors: how
+// each cut above it split them.
+static void diagnose(const acd::Decomposition& d)
+{
+	for (int i : d.parts()) {
+		const acd::Node& n = d.nodes[i];
+		if (d.certified(i)) continue;
+		std::printf("  part %s: concavity %.4g tau, hull %.4g..%.4g tau, uncut %d, faces %zu\n", n.path.c_str(),
+		            n.concavity / d.tau, n.hull_distance / d.tau, n.hull_distance_bound / d.tau, n.uncut, n.mesh.F.size());
+		if (!std::getenv("ACD_RUN_TRACE")) continue;
+		for (const acd::Node& a : d.nodes)
+			if (a.has_plane && n.path.rfind(a.path, 0) == 0) {
+				const acd::Node& kept = d.nodes[a.child[n.path[a.path.size()] - '0']];
+				const acd::Node& off  = d.nodes[a.child['1' - n.path[a.path.size()]]];
+				std::printf("    depth %3zu: concavity %.4g tau -> kept %.4g tau (volume %.4g), off %.4g tau (volume %.3g)\n",
+				            a.path.size(), a.concavity / d.tau, kept.concavity / d.tau, kept.volume / a.volume,
+				            off.concavity / d.tau, off.volume / a.volume);
+			}
+	}
+}
+
 int main(int argc, char** argv)
 {
 	if (argc < 3) {
@@ -44,22 +65,7 @@ int main(int argc, char** argv)
 		            d.parts().size(), d.max_part_concavity(), secs);
 		std::printf("tau_convex %d  max hull distance %.6g  merges %d  time limit %d\n", d.tau_convex(),
 		            d.max_hull_distance(), d.merges, d.time_limit_reached);
-		for (int i : d.parts()) {   // the parts that break the certificate, for diagnosis
-			const acd::Node& n = d.nodes[i];
-			if (!d.certified(i))
-				std::printf("  part %s: concavity %.4g tau, hull %.4g..%.4g tau, uncut %d, faces %zu\n",
-				            n.path.c_str(), n.concavity / d.tau, n.hull_distance / d.tau,
-				            n.hull_distance_bound / d.tau, n.uncut, n.mesh.F.size());
-			if (!d.certified(i) && std::getenv("ACD_RUN_TRACE"))   // its ancestors: how each cut split them
-				for (const acd::Node& a : d.nodes)
-					if (a.has_plane && n.path.rfind(a.path, 0) == 0) {
-						const acd::Node& kept = d.nodes[a.child[n.path[a.path.size()] - '0']];
-						const acd::Node& off  = d.nodes[a.child['1' - n.path[a.path.size()]]];
-						std::printf("    depth %3zu: concavity %.4g tau -> kept %.4g tau (volume %.4g), off %.4g tau (volume %.3g)\n",
-						            a.path.size(), a.concavity / d.tau, kept.concavity / d.tau, kept.volume / a.volume,
-						            off.concavity / d.tau, off.volume / a.volume);
-					}
-		}
+		diagnose(d);
 		if (const char* dump = std::getenv("ACD_RUN_PARTS"))   // every part, one object each
 			acd::bench::write_obj_objects(dump, [&] {
 				std::vector<acd::TriMesh> parts;
