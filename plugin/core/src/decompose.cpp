@@ -281,9 +281,7 @@ double Decomposition::max_hull_distance() const
 
 bool Decomposition::certified(int id) const
 {
-	const Node& n = nodes[id];
-	// 1% of tau is the slack the reach is refined to; the rest is rounding.
-	return !n.uncut && n.concavity <= tau && n.hull_distance_bound <= 1.01 * tau * (1 + 1e-9);
+	return acd::certified(nodes[id], tau);
 }
 
 bool Decomposition::tau_convex() const
@@ -431,6 +429,13 @@ private:
 		if (opt.hole_order == HoleOrder::First || notch_on_cavity || D.nodes[c.id].concavity <= opt.tau) c.hole = deepest;
 	}
 
+	// The notch's planes as `best` tries them: the bisector first, then those around its retraction.
+	std::vector<Plane> best_planes(int id) const
+	{
+		const Measured& ms = *measured[id];
+		return candidate_planes(ms.surface(D.nodes[id].mesh), ms.topo, ms.hull, ms.rep, CutPlaneSelection::Best, opt.candidate_planes);
+	}
+
 	void candidate_planes_for(Cut& c) const
 	{
 		const TriMesh&  mesh = D.nodes[c.id].mesh;
@@ -444,8 +449,7 @@ private:
 			c.planes = candidate_planes(ms.surface(mesh), ms.topo, ms.hull, ms.rep, c.sel, opt.candidate_planes, &c.sel);
 			if (c.sel == CutPlaneSelection::Bisector && c.planes.size() == 1) {
 				// Fall back to the other candidates only if the bisector cannot split.
-				auto more = candidate_planes(ms.surface(mesh), ms.topo, ms.hull, ms.rep, CutPlaneSelection::Best,
-				                             opt.candidate_planes);
+				const auto more = best_planes(c.id);
 				c.planes.insert(c.planes.end(), more.begin() + std::min<size_t>(1, more.size()), more.end());
 			}
 		}
@@ -543,7 +547,7 @@ private:
 		c.stalled            = true;
 		c.first_fit = c.by_section = false;
 		if (c.sel != CutPlaneSelection::Best) {
-			auto more = candidate_planes(ms.surface(mesh), ms.topo, ms.hull, ms.rep, CutPlaneSelection::Best, opt.candidate_planes);
+			const auto more = best_planes(c.id);
 			c.planes.insert(c.planes.end(), more.begin(), more.end());
 		}
 		const Vec3 centre = surface_moments(mesh, Vec3::Zero()).centroid;
@@ -602,9 +606,7 @@ private:
 	void widen(Cut& c) const
 	{
 		if (c.pick >= 0 || c.hole >= 0 || c.stalled || c.sel != CutPlaneSelection::BisectorOrFace) return;
-		const TriMesh&  mesh = D.nodes[c.id].mesh;
-		const Measured& ms   = *measured[c.id];
-		auto         more = candidate_planes(ms.surface(mesh), ms.topo, ms.hull, ms.rep, CutPlaneSelection::Best, opt.candidate_planes);
+		const auto   more = best_planes(c.id);
 		const size_t from = c.planes.size();
 		c.planes.insert(c.planes.end(), more.begin() + std::min<size_t>(1, more.size()), more.end());
 		c.trials.resize(c.planes.size());

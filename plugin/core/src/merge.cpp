@@ -174,7 +174,7 @@ private:
 			g.leaves = {l};
 			g.part   = n;
 			// Only certified parts merge: an uncut leaf or one holding a kept cavity stays as it is.
-			g.alive = !n.uncut && n.cavities == 0 && certified(n);
+			g.alive = n.cavities == 0 && certified(n, tau);
 			groups.push_back(std::move(g));
 		}
 		parallel_for(groups.size(), [&](size_t i) {
@@ -182,9 +182,7 @@ private:
 		});
 	}
 
-	// The cuts' certificate: the reach is refined to 1% of tau (decompose.cpp's tau_convex).
-	double bar() const { return 1.01 * tau * (1 + 1e-9); }
-	bool   certified(const Node& n) const { return n.concavity <= tau && n.hull_distance_bound <= bar(); }
+	double bar() const { return reach_bar(tau); }   // the cuts' certificate's
 
 	void start_neighbours()
 	{
@@ -303,7 +301,7 @@ private:
 		n.volume              = s.volume;
 		n.notch_count         = rep.notches;
 		if (rep.max_vertex >= 0) n.notch = s.mesh.V[rep.max_vertex];
-		if (!certified(n)) return std::nullopt;
+		if (!certified(n, tau)) return std::nullopt;
 		n.mesh      = std::move(s.mesh);
 		g.extreme   = extreme_points(corners);
 		g.crossings = crossings;

@@ -92,11 +92,19 @@ struct Decomposition
 	std::vector<int> parts() const;
 	double           max_part_concavity() const;
 	double           max_hull_distance() const;   // over the parts
-	// Node `id` within tau by both measures (its hull to 1% of tau) and not left uncut.
-	bool             certified(int id) const;
+	bool             certified(int id) const;   // acd::certified(nodes[id], tau)
 	// The certificate: every part certified, no cavity kept, no limit reached.
 	bool             tau_convex() const;
 };
+
+// How far a certified hull may reach: tau and the 1% of tau the reach is refined to; the rest is rounding.
+inline double reach_bar(double tau) { return 1.01 * tau * (1 + 1e-9); }
+
+// A part within tau by both measures (its hull within reach_bar) and not left uncut.
+inline bool certified(const Node& n, double tau)
+{
+	return !n.uncut && n.concavity <= tau && n.hull_distance_bound <= reach_bar(tau);
+}
 
 // Level of detail from a finished tree, without recomputing: the nodes where the tree is cut when a
 // piece may keep concavity up to `tau` (descend from the root while a node exceeds `tau`, holds a
