@@ -30,6 +30,20 @@ static void diagnose(const acd::Decomposition& d)
 	}
 }
 
+// With ACD_RUN_TREE, every cut: where it was made, the plane, and how it split the node.
+static void print_cuts(const acd::Decomposition& d)
+{
+	for (const acd::Node& a : d.nodes) {
+		if (!a.has_plane) continue;
+		const acd::Node& c0 = d.nodes[a.child[0]];
+		const acd::Node& c1 = d.nodes[a.child[1]];
+		std::printf("  cut %-12s concavity %.3g tau at (%.4g %.4g %.4g), n (%.3f %.3f %.3f) -> %.3g tau (%.3g), %.3g tau (%.3g)\n",
+		            a.path.c_str(), a.concavity / d.tau, a.notch.x(), a.notch.y(), a.notch.z(), a.plane.n.x(),
+		            a.plane.n.y(), a.plane.n.z(), c0.concavity / d.tau, c0.volume / a.volume, c1.concavity / d.tau,
+		            c1.volume / a.volume);
+	}
+}
+
 int main(int argc, char** argv)
 {
 	if (argc < 3) {
@@ -65,6 +79,7 @@ int main(int argc, char** argv)
 		            d.parts().size(), d.max_part_concavity(), secs);
 		std::printf("tau_convex %d  max hull distance %.6g  merges %d  time limit %d\n", d.tau_convex(),
 		            d.max_hull_distance(), d.merges, d.time_limit_reached);
+		if (std::getenv("ACD_RUN_TREE")) print_cuts(d);
 		diagnose(d);
 		if (const char* dump = std::getenv("ACD_RUN_PARTS"))   // every part, one object each
 			acd::bench::write_obj_objects(dump, [&] {

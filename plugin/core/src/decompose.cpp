@@ -185,7 +185,7 @@ std::vector<Plane> candidate_planes(const TriMesh& m, const Topology& topo, cons
 	// reflex edges (a symmetric notch) are told apart by their midpoints in the part's frame.
 	const PoseFrame& frame = rep.frame;
 	double          best = -1;
-	Vec3            edge = Vec3::Zero(), bis = Vec3::Zero(), mid = Vec3::Zero();
+	Vec3            edge = Vec3::Zero(), bis = Vec3::Zero(), mid = Vec3::Zero(), along = Vec3::Zero();
 	std::array<Vec3, 2> faces{Vec3::Zero(), Vec3::Zero()};
 	for (int f = 0; f < (int) m.F.size(); ++f) {
 		// Only faces around r matter; scanning is O(n) once per cut.
@@ -207,6 +207,7 @@ std::vector<Plane> candidate_planes(const TriMesh& m, const Topology& topo, cons
 			if (excess > best + tie || (excess >= best - tie && frame.before((a + b) / 2, mid))) {
 				best  = excess;
 				edge  = (b - a).normalized();
+				along = ((a - p).norm() > (b - p).norm() ? a - p : b - p).normalized();
 				bis   = n1 + n2;
 				mid   = (a + b) / 2;
 				faces = {n1, n2};
@@ -218,16 +219,27 @@ std::vector<Plane> candidate_planes(const TriMesh& m, const Topology& topo, cons
 	// at a sharp reflex edge (30 degrees or more from flat): on a smooth or wrapped surface the faces'
 	// planes are near-tangent slices.
 	const bool sharp = best > 0 && faces[0].cross(faces[1]).norm() >= 0.5;
-	if (sel == CutPlaneSelection::BisectorOrFace && !(sharp && !out.empty())) sel = CutPlaneSelection::Bisector;
+	// The plane of the rim the notch edge belongs to: a groove, step or flange of a faceted solid of
+	// revolution is cut off whole, where the bisector or a facet's plane would take one wedge of it.
+	std::optional<Vec3> rim;
+	if (best > 0 && sel != CutPlaneSelection::MinSection && sel != CutPlaneSelection::Bisector) {
+		std::vector<Vec3> pts;
+		for (int v : reflex_chain(m, topo, r, along, 0.7)) pts.push_back(m.V[v]);
+		rim = chain_plane_normal(pts);
+	}
+	if (sel == CutPlaneSelection::BisectorOrFace && !((sharp || rim) && !out.empty())) sel = CutPlaneSelection::Bisector;
 	if (used) *used = sel;
 	if (sel == CutPlaneSelection::Bisector && !out.empty()) return out;
 	if (sel == CutPlaneSelection::BisectorOrFace) {
 		// After the bisector, in the part's frame's order: a tie goes the same way in any pose.
 		if (frame.before(p + faces[1], p + faces[0])) std::swap(faces[0], faces[1]);
-		return {out[0], through(p, faces[0]), through(p, faces[1])};
+		if (sharp) out = {out[0], through(p, faces[0]), through(p, faces[1])};
+		if (rim) out.push_back(through(p, *rim));
+		return out;
 	}
 	if (sel == CutPlaneSelection::Best && sharp)
 		for (const Vec3& n : faces) out.push_back(through(p, n));
+	if (sel == CutPlaneSelection::Best && rim) out.push_back(through(p, *rim));
 
 	// Planes containing the retraction direction (the bridge's normal), at evenly spread angles
 	// starting from the notch edge's direction; and the plane parallel to the bridge.

@@ -3,6 +3,8 @@
 
 #include "acd/mesh.h"
 
+#include <optional>
+
 namespace acd {
 
 struct Topology
@@ -34,5 +36,14 @@ struct Topology
 // above 180 degrees? Each face's far vertex must rise above the other face's plane by more than
 // `flat`: an angle threshold alone lets the noisy normals of tiny cut triangles decide.
 bool is_reflex(const TriMesh& m, const Topology& t, int f, int k);
+
+// The chain of reflex edges through vertex v, walked both ways starting along dir: at each vertex
+// the reflex edge that turns least, if it turns by less than acos(min_cos). A CAD rim (a groove's
+// or a step's ring, a pocket's floor edge) is such a chain. Its vertices in order along it.
+std::vector<int> reflex_chain(const TriMesh& m, const Topology& t, int v, const Vec3& dir, double min_cos);
+
+// The normal of the plane a chain of points lies in, if it spans one (not a straight line) and
+// keeps to it within 1e-3 of its size.
+std::optional<Vec3> chain_plane_normal(const std::vector<Vec3>& pts);
 
 } // namespace acd
