@@ -243,7 +243,16 @@ std::vector<Plane> candidate_planes(const TriMesh& m, const Topology& topo, cons
 
 	// Planes containing the retraction direction (the bridge's normal), at evenly spread angles
 	// starting from the notch edge's direction; and the plane parallel to the bridge.
-	if (rep.max_bridge >= 0) {
+	// A notch charged with its bridge's reach: which of equally far bridges holds the farthest point
+	// is the search's rounding, so the fan turns about the notch edge instead.
+	if (rep.reach_cut && sel != CutPlaneSelection::MinSection && best > 0 && bis.norm() > 1e-12) {
+		const Vec3 n0 = edge.cross(bis).normalized(), w = edge.cross(n0);
+		for (int k = 1; k < around; ++k) {
+			const double th = M_PI * k / around;
+			out.push_back(through(p, std::cos(th) * n0 + std::sin(th) * w));
+		}
+	}
+	else if (rep.max_bridge >= 0) {
 		const std::optional<Vec3> out_dir = sel == CutPlaneSelection::MinSection ? retraction(hull, p) : std::nullopt;
 		const Vec3                nb      = out_dir ? *out_dir : hull.facet_plane[rep.max_bridge].n;
 		Vec3       u  = edge - nb * nb.dot(edge);
