@@ -171,22 +171,21 @@ std::vector<Plane> cavity_planes(const TriMesh& m, const std::vector<int>& faces
 	return out;
 }
 
-std::vector<Plane> candidate_planes(const TriMesh& m, const Topology& topo, const ConvexHull& hull,
-                                    const ConcavityReport& rep, CutPlaneSelection sel, int around,
-                                    CutPlaneSelection* used)
+// The notch's most reflex incident edge (sharper and longer first) and its two faces' normals.
+struct NotchEdge
 {
-	if (used) *used = sel;
-	std::vector<Plane> out;
-	const int          r = rep.max_vertex;
-	if (r < 0) return out;
-	const Vec3& p = m.V[r];
-
-	// The notch's most reflex incident edge, and the bisector of its two faces' normals. Equally
-	// reflex edges (a symmetric notch) are told apart by their midpoints in the part's frame.
-	const PoseFrame& frame = rep.frame;
-	double          best = -1;
-	Vec3            edge = Vec3::Zero(), bis = Vec3::Zero(), mid = Vec3::Zero(), along = Vec3::Zero();
+	double              excess = -1;   // > 0 if the notch has a reflex edge
+	Vec3                dir = Vec3::Zero(), along = Vec3::Zero(), mid = Vec3::Zero(), bis = Vec3::Zero();
 	std::array<Vec3, 2> faces{Vec3::Zero(), Vec3::Zero()};
+	bool                sharp() const { return excess > 0 && faces[0].cross(faces[1]).norm() >= 0.5; }
+	bool                bisects() const { return excess > 0 && bis.norm() > 1e-12; }
+};
+
+// Equally reflex edges (a symmetric notch) are told apart by their midpoints in the part's frame.
+NotchEdge notch_edge(const TriMesh& m, const Topology& topo, int r, const PoseFrame& frame)
+{
+	const Vec3& p = m.V[r];
+	NotchEdge   ne;
 	for (int f = 0; f < (int) m.F.size(); ++f) {
 		// Only faces around r matter; scanning is O(n) once per cut.
 		int k = -1;
@@ -202,37 +201,64 @@ std::vector<Plane> candidate_planes(const TriMesh& m, const Topology& topo, cons
 				return (m.V[t[1]] - m.V[t[0]]).cross(m.V[t[2]] - m.V[t[0]]).normalized();
 			};
 			const Vec3   n1 = normal(f), n2 = normal(g);
-			const double excess = (n1.cross(n2)).norm() * (b - a).norm();   // sharper and longer first
-			const double tie    = 1e-9 * std::max(best, excess);
-			if (excess > best + tie || (excess >= best - tie && frame.before((a + b) / 2, mid))) {
-				best  = excess;
-				edge  = (b - a).normalized();
-				along = ((a - p).norm() > (b - p).norm() ? a - p : b - p).normalized();
-				bis   = n1 + n2;
-				mid   = (a + b) / 2;
-				faces = {n1, n2};
+			const double excess = (n1.cross(n2)).norm() * (b - a).norm();
+			const double tie    = 1e-9 * std::max(ne.excess, excess);
+			if (excess > ne.excess + tie || (excess >= ne.excess - tie && frame.before((a + b) / 2, ne.mid))) {
+				ne.excess = excess;
+				ne.dir    = (b - a).normalized();
+				ne.along  = ((a - p).norm() > (b - p).norm() ? a - p : b - p).normalized();
+				ne.bis    = n1 + n2;
+				ne.mid    = (a + b) / 2;
+				ne.faces  = {n1, n2};
 			}
 		}
 	}
-	if (sel != CutPlaneSelection::MinSection && best > 0 && bis.norm() > 1e-12) out.push_back(through(p, edge.cross(bis)));
+	return ne;
+}
+
+// The plane of the rim the notch edge belongs to: a groove, step or flange of a faceted solid of
+// revolution is cut off whole, where the bisector or a facet's plane would take one wedge of it.
+std::optional<Vec3> rim_normal(const TriMesh& m, const Topology& topo, int r, const NotchEdge& ne)
+{
+	std::vector<Vec3> pts;
+	for (int v : reflex_chain(m, topo, r, ne.along, 0.7)) pts.push_back(m.V[v]);
+	return chain_plane_normal(pts);
+}
+
+// Planes through p at evenly spread angles about an axis, starting from normal n0 (at right angles
+// to it); `from` skips the first ones.
+void fan(std::vector<Plane>& out, const Vec3& p, const Vec3& n0, const Vec3& w, int around, int from = 0)
+{
+	for (int k = from; k < around; ++k) {
+		const double th = M_PI * k / around;
+		out.push_back(through(p, std::cos(th) * n0 + std::sin(th) * w));
+	}
+}
+
+std::vector<Plane> candidate_planes(const TriMesh& m, const Topology& topo, const ConvexHull& hull,
+                                    const ConcavityReport& rep, CutPlaneSelection sel, int around,
+                                    CutPlaneSelection* used)
+{
+	if (used) *used = sel;
+	std::vector<Plane> out;
+	const int          r = rep.max_vertex;
+	if (r < 0) return out;
+	const Vec3&      p  = m.V[r];
+	const NotchEdge  ne = notch_edge(m, topo, r, rep.frame);
+	if (sel != CutPlaneSelection::MinSection && ne.bisects()) out.push_back(through(p, ne.dir.cross(ne.bis)));
 	// The notch's two faces extended: a CAD step, slot or flange is cut off along its own face. Only
 	// at a sharp reflex edge (30 degrees or more from flat): on a smooth or wrapped surface the faces'
 	// planes are near-tangent slices.
-	const bool sharp = best > 0 && faces[0].cross(faces[1]).norm() >= 0.5;
-	// The plane of the rim the notch edge belongs to: a groove, step or flange of a faceted solid of
-	// revolution is cut off whole, where the bisector or a facet's plane would take one wedge of it.
-	std::optional<Vec3> rim;
-	if (best > 0 && sel != CutPlaneSelection::MinSection && sel != CutPlaneSelection::Bisector) {
-		std::vector<Vec3> pts;
-		for (int v : reflex_chain(m, topo, r, along, 0.7)) pts.push_back(m.V[v]);
-		rim = chain_plane_normal(pts);
-	}
+	const bool                sharp = ne.sharp();
+	const std::optional<Vec3> rim   = ne.excess > 0 && sel != CutPlaneSelection::MinSection && sel != CutPlaneSelection::Bisector
+	                                      ? rim_normal(m, topo, r, ne) : std::nullopt;
 	if (sel == CutPlaneSelection::BisectorOrFace && !((sharp || rim) && !out.empty())) sel = CutPlaneSelection::Bisector;
 	if (used) *used = sel;
 	if (sel == CutPlaneSelection::Bisector && !out.empty()) return out;
+	std::array<Vec3, 2> faces = ne.faces;
 	if (sel == CutPlaneSelection::BisectorOrFace) {
 		// After the bisector, in the part's frame's order: a tie goes the same way in any pose.
-		if (frame.before(p + faces[1], p + faces[0])) std::swap(faces[0], faces[1]);
+		if (rep.frame.before(p + faces[1], p + faces[0])) std::swap(faces[0], faces[1]);
 		if (sharp) out = {out[0], through(p, faces[0]), through(p, faces[1])};
 		if (rim) out.push_back(through(p, *rim));
 		return out;
@@ -242,27 +268,20 @@ std::vector<Plane> candidate_planes(const TriMesh& m, const Topology& topo, cons
 	if (sel == CutPlaneSelection::Best && rim) out.push_back(through(p, *rim));
 
 	// Planes containing the retraction direction (the bridge's normal), at evenly spread angles
-	// starting from the notch edge's direction; and the plane parallel to the bridge.
-	// A notch charged with its bridge's reach: which of equally far bridges holds the farthest point
-	// is the search's rounding, so the fan turns about the notch edge instead.
-	if (rep.reach_cut && sel != CutPlaneSelection::MinSection && best > 0 && bis.norm() > 1e-12) {
-		const Vec3 n0 = edge.cross(bis).normalized(), w = edge.cross(n0);
-		for (int k = 1; k < around; ++k) {
-			const double th = M_PI * k / around;
-			out.push_back(through(p, std::cos(th) * n0 + std::sin(th) * w));
-		}
+	// starting from the notch edge's direction; and the plane parallel to the bridge. A notch charged
+	// with its bridge's reach: which of equally far bridges holds the farthest point is the search's
+	// rounding, so the fan turns about the notch edge instead.
+	if (rep.reach_cut && sel != CutPlaneSelection::MinSection && ne.bisects()) {
+		const Vec3 n0 = ne.dir.cross(ne.bis).normalized();
+		fan(out, p, n0, ne.dir.cross(n0), around, 1);
 	}
 	else if (rep.max_bridge >= 0) {
 		const std::optional<Vec3> out_dir = sel == CutPlaneSelection::MinSection ? retraction(hull, p) : std::nullopt;
 		const Vec3                nb      = out_dir ? *out_dir : hull.facet_plane[rep.max_bridge].n;
-		Vec3       u  = edge - nb * nb.dot(edge);
+		Vec3       u  = ne.dir - nb * nb.dot(ne.dir);
 		if (u.norm() < 1e-9) u = nb.unitOrthogonal();
 		u.normalize();
-		const Vec3 w = nb.cross(u);
-		for (int k = 0; k < around; ++k) {
-			const double th = M_PI * k / around;
-			out.push_back(through(p, std::cos(th) * u + std::sin(th) * w));
-		}
+		fan(out, p, u, nb.cross(u), around);
 		if (sel != CutPlaneSelection::MinSection) out.push_back(through(p, nb));
 	}
 	return out;
