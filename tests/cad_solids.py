@@ -76,6 +76,12 @@ def stepped_shaft():
     return _cyl(10, 3, 48) + _cyl(10, 2, 40).translate([0, 0, 10]) + _cyl(6, 1.2, 32).translate([0, 0, 20])
 
 
+def belt_pulley():
+    """Timing-belt pulley: hub r 3, 4 long, between flanges r 3.6 chamfered onto it (48 facets)."""
+    profile = [(0, 0), (3.6, 0), (3.6, 0.5), (3.0, 0.8), (3.0, 3.2), (3.6, 3.5), (3.6, 4), (0, 4)]
+    return _mf().Manifold.revolve(_mf().CrossSection([profile]), 48)
+
+
 def spur_gear(teeth=14):
     """Spur gear: root r 3, tip r 3.6, 1 thick, bore r 1 (trapezoidal teeth)."""
     cs = _mf().CrossSection
@@ -100,7 +106,7 @@ def t_slot_rail():
 SOLIDS = {
     "keyway": keyway, "keyway_open": keyway_open, "plate": plate, "flange": flange, "bracket": bracket,
     "pocket": pocket, "through_slot": through_slot, "d_flat_shaft": d_flat_shaft,
-    "stepped_shaft": stepped_shaft, "spur_gear": spur_gear, "t_slot_rail": t_slot_rail,
+    "stepped_shaft": stepped_shaft, "belt_pulley": belt_pulley, "spur_gear": spur_gear, "t_slot_rail": t_slot_rail,
 }
 
 

@@ -60,6 +60,14 @@ def test_stepped_shaft_in_at_most_four_parts():
     check_partition(ms, 0, ids, tau_abs=res["tau_model_units"], overlap_samples=10)
 
 
+def test_belt_pulley_in_its_three_pieces():
+    """Flanges chamfered onto a faceted hub: each flange comes off whole across the rim it meets the hub
+    at, where the rim's facets, one plane each, would cut it in wedges."""
+    ms, res, ids = run("belt_pulley", 2.0, merge=None)
+    assert res["parts"] <= 4
+    check_partition(ms, 0, ids, tau_abs=res["tau_model_units"], overlap_samples=10)
+
+
 def test_the_tree_records_which_leaves_each_part_unites(tmp_path):
     tree = tmp_path / "tree.json"
     ms, res, ids = run("torus", 5.0, merge=True, tree_file=tree)
