@@ -22,6 +22,7 @@ import hashlib
 import json
 import os
 import pathlib
+import statistics
 import subprocess
 import sys
 import tempfile
@@ -286,9 +287,9 @@ def summarize(rows, meshes):
         for key in [OURS] + [(m, l) for m, l, _ in PEERS]:
             rs = [d.get(key) for d in keyed.values()]
             good = [r for r in rs if r and "error" not in r]
-            med = lambda xs: sorted(xs)[len(xs) // 2] if xs else float("nan")
+            med = lambda xs: statistics.median(xs) if xs else float("nan")
             split = [r for r in good if r.get("hull_error_outside") is not None]
-            out.append(f"| {key[0]} | {key[1]} | {med([r['hulls'] for r in good])} | "
+            out.append(f"| {key[0]} | {key[1]} | {med([r['hulls'] for r in good]):g} | "
                        f"{100 * med([r['hull_error'] for r in good]):.2f} | "
                        f"{100 * med([r['hull_error_outside'] for r in split]):.2f} / "
                        f"{100 * med([r['hull_error_inside'] for r in split]):.2f} ({len(split)}) | "
