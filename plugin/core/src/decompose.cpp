@@ -18,6 +18,7 @@
 #include <cstdlib>
 #include <functional>
 #include <map>
+#include <memory>
 #include <optional>
 #include <queue>
 #include <set>
@@ -108,12 +109,6 @@ struct Measured
 	// mesh is passed in, not kept: nodes move when the tree grows.)
 	const TriMesh& surface(const TriMesh& m) const { return outer.F.empty() ? m : outer; }
 };
-
-// A candidate cut's parts scored by the paper's measure itself (the same one the recursion uses).
-double part_concavity(const TriMesh& m, bool keep_cavities, double tau)
-{
-	return Measured(m, keep_cavities, tau).rep.max_concavity;
-}
 
 Plane through(const Vec3& p, Vec3 n)
 {
@@ -337,6 +332,9 @@ namespace {
 struct Trial
 {
 	SplitOutcome so;
+	// Its parts' measures (the paper's measure itself, the one the recursion uses): the picked
+	// plane's become its children's, not measured again.
+	std::shared_ptr<const Measured> measures[2];
 	bool         ok = false;
 	bool         crosses = false;   // keep_cavities: the plane cuts through a kept cavity
 	double       score = 0, sum = 0;
@@ -393,7 +391,7 @@ public:
 	void forget(int id) { measured[id].reset(); }
 
 private:
-	std::vector<std::unique_ptr<Measured>> measured;   // kept while a node waits to be cut
+	std::vector<std::shared_ptr<const Measured>> measured;   // kept while a node waits to be cut
 	std::unordered_map<int, int>           films;      // per node: films dropped (bounded)
 	std::unordered_set<int>                halved;     // nodes cut by halve()
 
@@ -408,10 +406,11 @@ private:
 		return (int) D.nodes.size() - 1;
 	}
 
-	void measure_node(int id)
+	// `ms`: the node's mesh already measured (as a scored trial's part), else measured here.
+	void measure_node(int id, std::shared_ptr<const Measured> ms = nullptr)
 	{
-		Node& n               = D.nodes[id];
-		auto  ms              = std::make_unique<Measured>(n.mesh, keep, opt.tau);
+		Node& n = D.nodes[id];
+		if (!ms) ms = std::make_shared<const Measured>(n.mesh, keep, opt.tau);
 		n.concavity           = ms->rep.max_concavity;
 		n.hull_distance       = ms->rep.hull_reach;
 		n.hull_distance_bound = ms->rep.hull_reach_bound;
@@ -520,8 +519,10 @@ private:
 	}
 
 	// Split the node by candidate i and, with `score`, measure the parts. Trials are independent
-	// (each writes its own slot), so they run on all cores.
-	void trial(Cut& c, size_t i, bool score) const
+	// (each writes its own slot), so they run on all cores; `both_cores` measures the two parts at
+	// once instead. A plane that cannot be picked unless it scores below `beat` stops, not ok, as soon
+	// as one part reaches it (the larger part first: the deep notch is more often there).
+	void trial(Cut& c, size_t i, bool score, double beat = INFINITY, bool both_cores = false) const
 	{
 		const TriMesh&  mesh = D.nodes[c.id].mesh;
 		const Measured& ms   = *measured[c.id];
@@ -548,7 +549,15 @@ private:
 			return;
 		}
 		try {
-			const double a = part_concavity(t.so.parts[0], keep, opt.tau), b = part_concavity(t.so.parts[1], keep, opt.tau);
+			const auto measure = [&](int s) { t.measures[s] = std::make_shared<const Measured>(t.so.parts[s], keep, opt.tau); };
+			const int larger = va < vb ? 1 : 0;
+			if (both_cores) parallel_for(2, [&](size_t s) { measure((int) s); });
+			else {
+				measure(larger);
+				if (!(t.measures[larger]->rep.max_concavity < beat)) return;
+				measure(1 - larger);
+			}
+			const double a = t.measures[0]->rep.max_concavity, b = t.measures[1]->rep.max_concavity;
 			if (chips(c.id, va, vb, a, b)) {
 				t.sliver = va < vb ? 0 : 1;
 				return;
@@ -613,8 +622,20 @@ private:
 			};
 			if (reach && (fit < 0 || shaves(c.trials[fit]))) c.first_fit = false;
 		}
-		if (!c.first_fit) parallel_for(c.planes.size(), [&](size_t i) { trial(c, i, true); });
+		if (c.first_fit) return;
+		if (!bisector_stands(c)) {
+			parallel_for(c.planes.size(), [&](size_t i) { trial(c, i, true); });
+			return;
+		}
+		// The bisector first: the others need only be scored far enough to see whether they beat it.
+		trial(c, 0, true, INFINITY, true);
+		const Trial& t0   = c.trials[0];
+		const double beat = t0.ok && !t0.crosses ? kClearlyLess * t0.score : INFINITY;
+		parallel_for(c.planes.size() - 1, [&](size_t i) { trial(c, i + 1, true, beat); });
 	}
+
+	// Whether pick_plane keeps candidate 0, the bisector, unless another scores clearly less.
+	static bool bisector_stands(const Cut& c) { return c.hole < 0 && !c.by_section && !c.stalled && c.planes.size() > 1; }
 
 	// The paper's bisector plane (candidate 0) stands unless another leaves clearly (10%) less
 	// concavity: greedy scores alone would rather shave small arms off one by one. Among the
@@ -636,7 +657,7 @@ private:
 		}
 		// For a notch (not a cavity, whose planes are all scored alike): see above.
 		if (c.hole < 0 && !c.by_section && pick > 0 && T[0].ok && !T[0].crosses && !(c.stalled && !progresses(c, T[0])) &&
-		    !(T[pick].score < 0.9 * T[0].score))
+		    !(T[pick].score < kClearlyLess * T[0].score))
 			pick = 0;
 		c.pick = pick;
 	}
@@ -745,11 +766,12 @@ private:
 			const int child      = add_node(std::move(best.parts[s]), id, path + char('0' + s));
 			D.nodes[id].child[s] = child;   // after add_node: it may move D.nodes
 		}
-		parallel_for(2, [&](size_t s) { measure_node(D.nodes[id].child[s]); });
+		parallel_for(2, [&](size_t s) { measure_node(D.nodes[id].child[s], c.trials[c.pick].measures[s]); });
 		for (int s = 0; s < 2; ++s) rec.push(D.nodes[id].child[s]);
 		return 1;
 	}
 
+	static constexpr double kClearlyLess = 0.9;   // another plane's score must be below this times the bisector's
 	static constexpr size_t kMaxDepth = 96;   // tree depth (path length) past which a node stays uncut
 	static constexpr int    kMaxFilms = 8;    // films dropped per node, so a node cannot loop
 };
