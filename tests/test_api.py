@@ -114,7 +114,7 @@ def test_every_subcommand_starts_from_the_same_defaults():
     assert seen["structure"]["tau"] == DEFAULTS["tau"] and seen["structure"]["preprocessing"] == "auto"
     assert seen["decompose"]["preprocessing"] == "auto"
     r = _cli("decompose", "--help")
-    assert "(default: 2.0)" in r.stdout and "(default: auto)" in r.stdout
+    assert f"(default: {DEFAULTS['tau']})" in r.stdout and "(default: auto)" in r.stdout
 
 
 def test_cli_writes_one_hulls_file_and_draws_one_progress_line(tmp_path):

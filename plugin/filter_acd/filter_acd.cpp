@@ -184,7 +184,7 @@ RichParameterList FilterACD::initParameterList(const QAction* a, const MeshModel
 		                   "Monte Carlo samples for the volume IoU between the union and the mesh."));
 		return p;
 	default:
-		acdml::add_decomposition_parameters(p, 2.0, 3, true, true, true);
+		acdml::add_decomposition_parameters(p, 2.5, 3, true, true, true);
 		p.addParam(RichString("tree_file", "", "Save tree as (JSON)",
 		                      "If set, the whole cut tree (nodes, parents, paths, planes, concavity, volume) is "
 		                      "written to this JSON file; layer names are the leaves' paths. Empty: not written.",

@@ -7,12 +7,12 @@ filters as ``pymeshlab.MeshSet`` methods::
     ms = pymeshlab.MeshSet()
     ms.load_new_mesh("bunny.obj")
     ms.compute_scalar_by_notch_concavity()
-    ms.generate_approximate_convex_decomposition(tau=2.0)
+    ms.generate_approximate_convex_decomposition(tau=2.5)
     ms.generate_polygon_approximate_convex_decomposition(tau=1.0)   # on a planar polygon layer
 
 or, from arrays, without a MeshSet::
 
-    hulls = pymeshlab_acd.convex_decomposition(vertices, faces, tau=2.0)   # [(V, F), ...]
+    hulls = pymeshlab_acd.convex_decomposition(vertices, faces, tau=2.5)   # [(V, F), ...]
 
 ``tau`` is a float (percent of the size, or model units with ``tau_unit="model_units"``), or, as in
 pymeshlab's own filters, ``pymeshlab.PercentageValue`` (percent of the bounding-box diagonal) or
@@ -208,7 +208,7 @@ def _tau_value(ms, params):
                     f"pymeshlab.PercentageValue or pymeshlab.PureValue, not {type(tau).__name__}")
 
 
-def convex_decomposition(vertices, faces=None, tau=2.0, return_parts=False, **filter_params):
+def convex_decomposition(vertices, faces=None, tau=2.5, return_parts=False, **filter_params):
     """Approximate convex decomposition of a triangle mesh given as arrays, without a MeshSet or files.
 
     `vertices` (n x 3) and `faces` (m x 3), or a `trimesh.Trimesh` (or anything with `vertices` and

@@ -2,7 +2,7 @@
 convex_decomposition all start from these values (the filters keep MeshLab's own parameter defaults)."""
 
 DEFAULTS = dict(
-    tau=2.0,                        # concavity tolerance, % of the size (tau_unit) or model units
+    tau=2.5,                        # concavity tolerance, % of the size (tau_unit) or model units
     tau_unit="percent_of_size",
     cut_plane_selection="bisector_or_face",   # bisector_or_face | best | bisector | min_section
     max_parts=0,                    # 0: no limit
