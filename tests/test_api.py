@@ -89,6 +89,18 @@ def test_cli_checks_arguments_before_any_work(tmp_path):
     assert r.returncode == 2 and "give --out" in r.stderr
 
 
+def test_the_filter_and_the_command_line_share_their_defaults(ms):
+    """The MeshLab filter's own parameter defaults (what the GUI dialog and a bare pymeshlab call get) are
+    the table the command line, the batch and convex_decomposition start from."""
+    from pymeshlab_acd.options import DEFAULTS
+    add_mesh(ms, *extrude(L_SHAPE, 0, 1))
+    got = ms.filter_parameter_values("generate_approximate_convex_decomposition")
+    selections = ["best", "bisector", "min_section", "bisector_or_face"]
+    assert got["tau"] == DEFAULTS["tau"] and got["tau_unit"] == 0
+    assert selections[got["cut_plane_selection"]] == DEFAULTS["cut_plane_selection"]
+    assert got["merge_parts"] is DEFAULTS["merge_parts"] and got["max_parts"] == DEFAULTS["max_parts"]
+
+
 def test_every_subcommand_starts_from_the_same_defaults():
     """One table (pymeshlab_acd.options.DEFAULTS) behind decompose, batch and structure, shown in --help."""
     from pymeshlab_acd.__main__ import main
