@@ -518,10 +518,26 @@ private:
 		return std::min(va, vb) < 1e-3 * D.nodes[id].volume && chip > opt.tau && rest >= 0.99 * D.nodes[id].concavity;
 	}
 
+	// The trial's two parts measured (false: one of them is beyond `beat`, the other left unmeasured).
+	// `both_cores` measures the two at once; otherwise the larger part goes first, as the deep notch
+	// is more often there.
+	bool measure_parts(Trial& t, double va, double vb, double beat, bool both_cores) const
+	{
+		const auto measure = [&](int s) { t.measures[s] = std::make_shared<const Measured>(t.so.parts[s], keep, opt.tau); };
+		if (both_cores) {
+			parallel_for(2, [&](size_t s) { measure((int) s); });
+			return true;
+		}
+		const int larger = va < vb ? 1 : 0;
+		measure(larger);
+		if (!(t.measures[larger]->rep.max_concavity < beat)) return false;
+		measure(1 - larger);
+		return true;
+	}
+
 	// Split the node by candidate i and, with `score`, measure the parts. Trials are independent
-	// (each writes its own slot), so they run on all cores; `both_cores` measures the two parts at
-	// once instead. A plane that cannot be picked unless it scores below `beat` stops, not ok, as soon
-	// as one part reaches it (the larger part first: the deep notch is more often there).
+	// (each writes its own slot), so they run on all cores. A plane that cannot be picked unless it
+	// scores below `beat` stops, not ok, as soon as one part reaches it.
 	void trial(Cut& c, size_t i, bool score, double beat = INFINITY, bool both_cores = false) const
 	{
 		const TriMesh&  mesh = D.nodes[c.id].mesh;
@@ -549,14 +565,7 @@ private:
 			return;
 		}
 		try {
-			const auto measure = [&](int s) { t.measures[s] = std::make_shared<const Measured>(t.so.parts[s], keep, opt.tau); };
-			const int larger = va < vb ? 1 : 0;
-			if (both_cores) parallel_for(2, [&](size_t s) { measure((int) s); });
-			else {
-				measure(larger);
-				if (!(t.measures[larger]->rep.max_concavity < beat)) return;
-				measure(1 - larger);
-			}
+			if (!measure_parts(t, va, vb, beat, both_cores)) return;
 			const double a = t.measures[0]->rep.max_concavity, b = t.measures[1]->rep.max_concavity;
 			if (chips(c.id, va, vb, a, b)) {
 				t.sliver = va < vb ? 0 : 1;
