@@ -9,7 +9,7 @@
 With the peers' published rows (docs/robots/robots-peers.json) it also prints, per setting, the
 comparison with the peers that bench_robots' front() prints for the default setting.
 
-A setting is selection:tau:merge (merge 1 or 0). Rows are appended to --out (a rerun skips the rows
+A setting is selection:tau:merge (merge 1 or 0), optionally followed by :wrap_alpha:wrap_offset (%). Rows are appended to --out (a rerun skips the rows
 it has) and the summary table is printed from them: medians over the meshes every setting finished.
 """
 import argparse
@@ -26,12 +26,14 @@ import bench  # noqa: E402
 import bench_robots as br  # noqa: E402
 
 
-def run(p, inp, sel, tau, merge, timeout):
+def run(p, inp, sel, tau, merge, timeout, wrap=()):
     from pymeshlab_acd import batch
     with tempfile.TemporaryDirectory() as tmp:
         out = pathlib.Path(tmp) / "o"
         opts = dict(batch.DEFAULTS, tau=tau, cut_plane_selection=sel, merge_parts=merge, max_hull_vertices=0,
                     formats=["obj"], timeout=timeout)
+        if wrap:
+            opts.update(wrap_alpha=float(wrap[0]), wrap_offset=float(wrap[1]))
         rec = batch.run_child(str(p), str(out), opts)
         if rec.get("status") != "ok":
             return dict(error=str(rec.get("error"))[:200])
@@ -75,6 +77,8 @@ def main():
     ap.add_argument("--out", default=str(REPO / "out" / "study.jsonl"))
     ap.add_argument("--timeout", type=int, default=900)
     ap.add_argument("--sample", type=int, default=20, help="meshes of the peers' sample to run (20 or 60)")
+    ap.add_argument("--wrapped-only", action="store_true",
+                    help="only the meshes that an earlier row of --out shows alpha wrapped")
     ap.add_argument("--report", action="store_true", help="run nothing: print the summary of the rows kept")
     args = ap.parse_args()
     settings = args.settings.split(",")
@@ -84,6 +88,7 @@ def main():
     out.parent.mkdir(parents=True, exist_ok=True)
     rows = [json.loads(line) for line in out.read_text().splitlines()] if out.exists() else []
     have = {(r["mesh"], r["setting"]) for r in rows}
+    wrapped = {r["mesh"]: "alpha_wrap" in r.get("preprocessing", "") for r in rows if "preprocessing" in r}
     for p in ([] if args.report else sorted(br.sample(files, meshes, args.sample))):
         name = br.mesh_name(p, meshes, files)
         inp = REPO / "out" / "robots" / "inputs" / (name.replace("/", "__") + ".obj")
@@ -93,8 +98,10 @@ def main():
         for s in settings:
             if (name, s) in have:
                 continue
-            sel, tau, merge = s.split(":")
-            row = dict(mesh=name, setting=s, **run(p, inp, sel, float(tau), merge == "1", args.timeout))
+            sel, tau, merge, *wrap = s.split(":")
+            if args.wrapped_only and not wrapped.get(name, True):
+                continue
+            row = dict(mesh=name, setting=s, **run(p, inp, sel, float(tau), merge == "1", args.timeout, wrap))
             rows.append(row)
             with out.open("a") as f:
                 f.write(json.dumps(row) + "\n")

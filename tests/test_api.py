@@ -99,6 +99,8 @@ def test_the_filter_and_the_command_line_share_their_defaults(ms):
     assert got["tau"] == DEFAULTS["tau"] and got["tau_unit"] == 0
     assert selections[got["cut_plane_selection"]] == DEFAULTS["cut_plane_selection"]
     assert got["merge_parts"] is DEFAULTS["merge_parts"] and got["max_parts"] == DEFAULTS["max_parts"]
+    assert got["wrap_alpha"] == pytest.approx(DEFAULTS["wrap_alpha"])
+    assert got["wrap_offset"] == pytest.approx(DEFAULTS["wrap_offset"])
 
 
 def test_every_subcommand_starts_from_the_same_defaults():

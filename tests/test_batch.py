@@ -12,6 +12,7 @@ import pymeshlab
 import pytest
 
 from conftest import L_SHAPE, PLUS, add_mesh, box, extrude, is_closed_manifold, torus, volume
+from pymeshlab_acd.options import DEFAULTS
 
 
 @pytest.fixture(scope="module")
@@ -66,7 +67,7 @@ def check_outputs(in_dir, out_dir, rows, shapes):
             assert total == pytest.approx(volume(V, F), rel=1e-6), name
             assert r["preprocessing"] == "none"
         else:                           # wrapped first: close to the box, slightly larger
-            assert r["preprocessing"] == "alpha_wrap 1%" and "duplicate" in r["error"]
+            assert r["preprocessing"] == f"alpha_wrap {DEFAULTS['wrap_alpha']:g}%" and "duplicate" in r["error"]
             assert 8 < total < 1.2 * 8          # the 2 x 2 x 2 box, and the wrap's small offset
 
 

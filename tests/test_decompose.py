@@ -11,6 +11,7 @@ import pymeshlab
 import pytest
 
 import pymeshlab_acd
+from pymeshlab_acd.options import DEFAULTS
 from conftest import (BUNNY, L_SHAPE, PLUS, SHARED, U_SHAPE, add_mesh, extrude, hull_within, icosphere, inside,
                       interior_samples, is_closed_manifold, torus, volume)
 
@@ -256,13 +257,14 @@ def test_auto_preprocessing_keeps_a_valid_solid_and_wraps_a_holed_sphere_solid(m
     holed = pymeshlab.MeshSet()
     add_mesh(holed, V, F[centre_z < 0.97])   # a hole about 0.45 across at the north pole
     ball = 4 / 3 * np.pi
-    # MeshLab's own alpha wrap at the default alpha (1%) slips through the hole: a thin skin
-    holed.generate_alpha_wrap(alpha=pymeshlab.PercentageValue(1), offset=pymeshlab.PercentageValue(0.1))
+    # MeshLab's own alpha wrap at the default alpha slips through the hole: a thin skin
+    holed.generate_alpha_wrap(alpha=pymeshlab.PercentageValue(DEFAULTS["wrap_alpha"]),
+                              offset=pymeshlab.PercentageValue(DEFAULTS["wrap_offset"]))
     skin = holed.current_mesh()
     assert volume(skin.vertex_matrix(), skin.face_matrix()) < 0.2 * ball
     holed.set_current_mesh(0)
     res, ids = pymeshlab_acd.decompose(holed, tau=10.0, preprocessing="auto", with_tree=False)
-    assert res["alpha_wrapped"] and res["wrap_alpha_used"] > 1.0
+    assert res["alpha_wrapped"] and res["wrap_alpha_used"] > DEFAULTS["wrap_alpha"]
     volumes = {"auto": sum(volume(holed.mesh(i).vertex_matrix(), holed.mesh(i).face_matrix()) for i in ids)}
     assert volumes["auto"] > 0.8 * ball, volumes          # auto's wrap is the filled ball
 

@@ -63,7 +63,7 @@ struct Number
 	const char* help;
 };
 const Number kWrapNumbers[] = {
-	{"wrap_alpha", 1.0f, "Alpha wrap: alpha (%)",
+	{"wrap_alpha", 2.0f, "Alpha wrap: alpha (%)",
 	 "With alpha_wrap: gaps, holes and cavities narrower than about this are closed, as a percentage of the "
 	 "enclosing-sphere diameter (smaller keeps more detail and costs more)."},
 	{"wrap_offset", 0.1f, "Alpha wrap: offset (%)",

@@ -9,7 +9,7 @@ DEFAULTS = dict(
     merge_parts=True,               # merge neighbouring parts while their union stays within tau
     max_hull_vertices=0,            # per collision hull; 0: the exact hull
     preprocessing="auto",           # as given if a valid solid, else welded, else alpha-wrapped
-    wrap_alpha=1.0,                 # alpha wrap: alpha, % of the size
+    wrap_alpha=2.0,                 # alpha wrap: alpha, % of the size
     wrap_offset=0.1,                # alpha wrap: offset, % of the size
     time_limit=0.0,                 # seconds in the core; 0: none
 )

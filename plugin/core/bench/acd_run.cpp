@@ -1,6 +1,7 @@
 // Decompose an OBJ file from the command line (for profiling the core without MeshLab):
 //   acd_run mesh.obj tau_percent [bisector_or_face|bisector|best|min_section][+merge] [max_parts]
-// ACD_RUN_WRAP=alpha_percent wraps the mesh first as preprocessing = auto does (welded or wrapped).
+// ACD_RUN_WRAP=alpha_percent wraps the mesh first as preprocessing = auto does (welded or wrapped),
+// ACD_RUN_OFFSET=percent at that offset (0.1 unless given).
 #include "acd/decompose.h"
 #include "acd/wrap_solid.h"
 #include "obj_io.h"
@@ -53,9 +54,11 @@ int main(int argc, char** argv)
 	acd::TriMesh m = acd::bench::read_obj(argv[1]);
 	try {
 		auto t0 = std::chrono::steady_clock::now();
-		if (const char* a = std::getenv("ACD_RUN_WRAP")) {   // preprocessing auto: alpha a% of size, offset 0.1%
-			const double d = acd::enclosing_diameter(m.V);
-			m              = acd::wrap_solid(m, std::atof(a) / 100 * d, 0.001 * d, 0.16 * d).mesh;
+		if (const char* a = std::getenv("ACD_RUN_WRAP")) {   // preprocessing auto: alpha a% of size
+			const double d      = acd::enclosing_diameter(m.V);
+			const char*  o      = std::getenv("ACD_RUN_OFFSET");   // percent, 0.1 unless given
+			const double offset = (o ? std::atof(o) : 0.1) / 100 * d;
+			m                   = acd::wrap_solid(m, std::atof(a) / 100 * d, offset, 0.16 * d).mesh;
 			std::printf("wrapped: %zu faces in %.3f s\n", m.F.size(),
 			            std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
 		}
