@@ -37,7 +37,6 @@ import bench  # noqa: E402  (run_method, metrics, write_hulls, read_obj)
 WHEEL = "example_robot_data-6.0.0-0-py3-none-any.whl"
 WHEEL_SHA256 = "424092a8093411ac2cd4ccc0572382bfc6b5eb4833aa984ef5e671dd67cd0a6e"
 PREFIX = "cmeel.prefix/share/example-robot-data/robots/"
-DEFAULT = {"tau": 2.5, "cut_plane_selection": "bisector_or_face"}   # the filter's defaults
 # CoACD at its default and at 0.1, V-HACD 4 and CGAL at their defaults.
 PEERS = [s for s in bench.SETTINGS if s[0] != "ours" and s[1] != "resolution 100k" and s[1] != "45 volumes"]
 OURS = ("ours", "tau 2.5% bisector_or_face (default)")
@@ -105,8 +104,7 @@ def sample(files, meshes, n):
 # ---- ours, through the batch's child process (auto preprocessing), then the certificate ---------
 def run_ours(src, out_dir, timeout):
     from pymeshlab_acd import batch
-    opts = dict(batch.DEFAULTS, tau=DEFAULT["tau"], cut_plane_selection=DEFAULT["cut_plane_selection"],
-                max_hull_vertices=0, formats=["obj"], timeout=timeout)
+    opts = dict(batch.DEFAULTS, max_hull_vertices=0, formats=["obj"], timeout=timeout)   # the defaults' tau and cuts
     t0 = time.perf_counter()
     rec = batch.run_child(src, out_dir, opts)
     rec["wall"] = time.perf_counter() - t0

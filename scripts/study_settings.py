@@ -9,8 +9,9 @@
 With the peers' published rows (docs/robots/robots-peers.json) it also prints, per setting, the
 comparison with the peers that bench_robots' front() prints for the default setting.
 
-A setting is selection:tau:merge (merge 1 or 0), optionally followed by :wrap_alpha:wrap_offset (%). Rows are appended to --out (a rerun skips the rows
-it has) and the summary table is printed from them: medians over the meshes every setting finished.
+A setting is selection:tau:merge (merge 1 or 0), optionally followed by :wrap_alpha:wrap_offset (%).
+Rows are appended to --out (a rerun skips the rows it has) and the summary table is printed from them:
+medians over the meshes every setting finished.
 """
 import argparse
 import json
@@ -91,6 +92,8 @@ def main():
     wrapped = {r["mesh"]: "alpha_wrap" in r.get("preprocessing", "") for r in rows if "preprocessing" in r}
     for p in ([] if args.report else sorted(br.sample(files, meshes, args.sample))):
         name = br.mesh_name(p, meshes, files)
+        if args.wrapped_only and not wrapped.get(name, True):
+            continue
         inp = REPO / "out" / "robots" / "inputs" / (name.replace("/", "__") + ".obj")
         if not inp.exists():
             inp.parent.mkdir(parents=True, exist_ok=True)
@@ -99,8 +102,6 @@ def main():
             if (name, s) in have:
                 continue
             sel, tau, merge, *wrap = s.split(":")
-            if args.wrapped_only and not wrapped.get(name, True):
-                continue
             row = dict(mesh=name, setting=s, **run(p, inp, sel, float(tau), merge == "1", args.timeout, wrap))
             rows.append(row)
             with out.open("a") as f:
