@@ -103,10 +103,19 @@ def t_slot_rail():
     return rail - neck - head
 
 
+def bossed_plate():
+    """Plate 60 x 40 x 4 with a low square boss on its top: 20 x 20 at the base, 5 x 5 at the top, 2 high
+    (its sides 15 degrees from the plate)."""
+    mf = _mf()
+    boss = mf.Manifold.extrude(mf.CrossSection.square([20, 20], True), 2.0, 0, 0.0, [0.25, 0.25])
+    return _cube([60, 40, 4], True).translate([0, 0, 2]) + boss.translate([0, 0, 4])
+
+
 SOLIDS = {
     "keyway": keyway, "keyway_open": keyway_open, "plate": plate, "flange": flange, "bracket": bracket,
     "pocket": pocket, "through_slot": through_slot, "d_flat_shaft": d_flat_shaft,
     "stepped_shaft": stepped_shaft, "belt_pulley": belt_pulley, "spur_gear": spur_gear, "t_slot_rail": t_slot_rail,
+    "bossed_plate": bossed_plate,
 }
 
 

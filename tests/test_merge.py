@@ -68,6 +68,24 @@ def test_belt_pulley_in_its_three_pieces():
     check_partition(ms, 0, ids, tau_abs=res["tau_model_units"], overlap_samples=10)
 
 
+def test_low_boss_comes_off_its_plate_whole():
+    """A boss whose sides rise 15 degrees from its plate: with the default settings the plate's top face
+    takes it off in one piece (the plate and the boss), where the bisector slices across both."""
+    ms, res, ids = run("bossed_plate", 2.0, merge=None)
+    parts = check_partition(ms, 0, ids, tau_abs=res["tau_model_units"], overlap_samples=10)
+    assert sorted(volume(V, F) for V, F, _ in parts) == pytest.approx([350.0, 9600.0], rel=1e-4)
+
+    # In any pose: the flat is found by the faces' own planes, not by the axes.
+    import test_equivariance as te
+    V, F = solid("bossed_plate")
+    for seed in range(3):
+        ms = pymeshlab.MeshSet()
+        add_mesh(ms, V @ te.random_rotation(seed).T, F, "bossed_plate")
+        _, ids = pymeshlab_acd.decompose(ms, with_tree=False, tau=2.0)
+        vols = sorted(volume(ms.mesh(i).vertex_matrix(), ms.mesh(i).face_matrix()) for i in ids)
+        assert vols == pytest.approx([350.0, 9600.0], rel=1e-4), seed
+
+
 def test_the_tree_records_which_leaves_each_part_unites(tmp_path):
     tree = tmp_path / "tree.json"
     ms, res, ids = run("torus", 5.0, merge=True, tree_file=tree)

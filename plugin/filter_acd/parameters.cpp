@@ -97,8 +97,9 @@ void add_decomposition_parameters(RichParameterList& p, float tau, int cut_plane
 		"min_section: of the planes through the notch and its retraction direction, the one cutting the "
 		"smallest cross-section (the neck), which surface noise hardly moves (the skeleton's default); "
 		"bisector_or_face: the bisector, or at a sharp notch edge (a CAD step, slot or flange) one of its two "
-		"faces extended, or the plane of the rim the notch edge lies on (a groove's or step's ring), when "
-		"that leaves clearly less concave parts (near the bisector's speed)."));
+		"faces extended, or the plane of the rim the notch edge lies on (a groove's or step's ring), or the "
+		"flat a shallow notch rises from (a low boss or ramp on a plate), when that leaves clearly less "
+		"concave parts (near the bisector's speed)."));
 	p.addParam(RichEnum(
 		"hole_handling", 0, labels(kCavityCuts), "Cavities (hole boundaries)",
 		"How closed inner shells (cavities) are resolved; their notches never reach the hull. "

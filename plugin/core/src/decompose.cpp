@@ -220,6 +220,26 @@ std::optional<Vec3> rim_normal(const TriMesh& m, const Topology& topo, int r, co
 	return chain_plane_normal(pts);
 }
 
+// The floor the notch rises from: of the notch edge's two faces, the one facing the bridge, if its
+// plane holds a tenth of the surface or more. A shallow boss or ramp on a plate meets the plate at a
+// flat angle, where the bisector slices across both; the plate's own face takes the boss off whole.
+// A smooth or wrapped surface has no such flat, so it adds no plane to score there.
+std::optional<Vec3> floor_normal(const TriMesh& m, const Vec3& p, const NotchEdge& ne, const Vec3& bridge)
+{
+	const Vec3   n   = ne.faces[0].dot(bridge) >= ne.faces[1].dot(bridge) ? ne.faces[0] : ne.faces[1];
+	const double eps = 1e-6 * extent(m.V);
+	double       on = 0, all = 0;
+	for (const Tri& t : m.F) {
+		const Vec3   c    = (m.V[t[1]] - m.V[t[0]]).cross(m.V[t[2]] - m.V[t[0]]);
+		const double area = c.norm();
+		all += area;
+		bool flat = area > 0 && c.dot(n) > (1 - 1e-9) * area;
+		for (int k = 0; k < 3 && flat; ++k) flat = std::abs(n.dot(m.V[t[k]] - p)) <= eps;
+		if (flat) on += area;
+	}
+	return on >= 0.1 * all ? std::optional<Vec3>(n) : std::nullopt;
+}
+
 // Planes through p at evenly spread angles about an axis, starting from normal n0 (at right angles
 // to it); `from` skips the first ones.
 void fan(std::vector<Plane>& out, const Vec3& p, const Vec3& n0, const Vec3& w, int around, int from = 0)
@@ -247,7 +267,10 @@ std::vector<Plane> candidate_planes(const TriMesh& m, const Topology& topo, cons
 	const bool                sharp = ne.sharp();
 	const std::optional<Vec3> rim   = ne.excess > 0 && sel != CutPlaneSelection::MinSection && sel != CutPlaneSelection::Bisector
 	                                      ? rim_normal(m, topo, r, ne) : std::nullopt;
-	if (sel == CutPlaneSelection::BisectorOrFace && !((sharp || rim) && !out.empty())) sel = CutPlaneSelection::Bisector;
+	const std::optional<Vec3> floor = sel == CutPlaneSelection::BisectorOrFace && !sharp && !rim && ne.excess > 0 &&
+	                                          !rep.reach_cut && rep.max_bridge >= 0
+	                                      ? floor_normal(m, p, ne, hull.facet_plane[rep.max_bridge].n) : std::nullopt;
+	if (sel == CutPlaneSelection::BisectorOrFace && !((sharp || rim || floor) && !out.empty())) sel = CutPlaneSelection::Bisector;
 	if (used) *used = sel;
 	if (sel == CutPlaneSelection::Bisector && !out.empty()) return out;
 	std::array<Vec3, 2> faces = ne.faces;
@@ -256,6 +279,7 @@ std::vector<Plane> candidate_planes(const TriMesh& m, const Topology& topo, cons
 		if (rep.frame.before(p + faces[1], p + faces[0])) std::swap(faces[0], faces[1]);
 		if (sharp) out = {out[0], through(p, faces[0]), through(p, faces[1])};
 		if (rim) out.push_back(through(p, *rim));
+		if (floor) out.push_back(through(p, *floor));
 		return out;
 	}
 	if (sel == CutPlaneSelection::Best && sharp)
