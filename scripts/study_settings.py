@@ -9,7 +9,10 @@
 With the peers' published rows (docs/robots/robots-peers.json) it also prints, per setting, the
 comparison with the peers that bench_robots' front() prints for the default setting.
 
-A setting is selection:tau:merge (merge 1 or 0), optionally followed by :wrap_alpha:wrap_offset (%).
+A setting is selection:tau:merge (merge 1 or 0), optionally followed by :wrap_alpha:wrap_offset (%);
+`coacd:THRESHOLD` runs CoACD itself on the same machine (scored alike), so that times compare with
+ours run for run: the summary then gives each of our settings' time against it, in all and on the
+largest mesh.
 Rows are appended to --out (a rerun skips the rows it has) and the summary table is printed from them:
 medians over the meshes every setting finished.
 """
@@ -46,30 +49,61 @@ def run(p, inp, sel, tau, merge, timeout, wrap=()):
         return row
 
 
+def run_coacd(inp, threshold, timeout):
+    with tempfile.TemporaryDirectory() as tmp:
+        hobj = pathlib.Path(tmp) / "hulls.obj"
+        r = bench.run_method("coacd", {"threshold": threshold}, inp, hobj, timeout)
+        if "error" in r:
+            return dict(error=r["error"])
+        row = dict(hulls=r["hulls"], time=r["time"], worst=None, over=0)
+        row.update(bench.metrics(inp, hobj, 50000))
+        return row
+
+
+def time_against(done, ours, theirs):
+    """Our setting's time against a `coacd:` setting's run on this machine, over the meshes both did."""
+    both = [d for d in done.values() if "hull_error" in d.get(ours, {}) and "hull_error" in d.get(theirs, {})]
+    if not both:
+        return ""
+    t, c = sum(d[ours]["time"] for d in both), sum(d[theirs]["time"] for d in both)
+    big = max(both, key=lambda d: d[theirs]["faces"])
+    return (f"{ours}: time against {theirs} run here, on the {len(both)} meshes both decomposed: {t:.0f} s "
+            f"against {c:.0f} s ({t / c:.2f} of it); on the largest ({big[theirs]['faces']} faces) "
+            f"{big[ours]['time']:.1f} s against {big[theirs]['time']:.1f} s ({big[ours]['time'] / big[theirs]['time']:.2f}).")
+
+
+def table(done, settings, ms, label, coacd):
+    """Medians per setting over the meshes ms (time: total), CoACD 0.05's published rows beside."""
+    med = statistics.median
+    print(f"\n{len(ms)} meshes: {label} (medians; time: total)\n")
+    print("| setting | hulls | hull error % diag | worst hull / tau | parts over tau | time (s) |")
+    print("| --- | --- | --- | --- | --- | --- |")
+    for s in settings:
+        rs = [done[m][s] for m in ms]
+        worst = [r["worst"] for r in rs if r["worst"] is not None]   # none for CoACD's rows
+        print(f"| {s} | {med(r['hulls'] for r in rs)} | {100 * med(r['hull_error'] for r in rs):.2f} | "
+              f"{format(max(worst), '.3f') if worst else ''} | {sum(r['over'] for r in rs)} | "
+              f"{sum(r['time'] for r in rs):.0f} |")
+    if ms and all("hulls" in coacd.get(m, {}) for m in ms):
+        cs = [coacd[m] for m in ms]
+        print(f"| CoACD 0.05 (published rows) | {med(c['hulls'] for c in cs)} | "
+              f"{100 * med(c['hull_error'] for c in cs):.2f} | | | {sum(c['time'] for c in cs):.0f} |")
+
+
 def summary(rows, settings, peers):
     coacd = {r["mesh"]: r for r in peers if r["method"] == "coacd" and "0.05" in r["setting"]}
+    faces = {r["mesh"]: r["faces"] for r in peers}
     done = {}
     for r in rows:
-        done.setdefault(r["mesh"], {})[r["setting"]] = r
+        done.setdefault(r["mesh"], {})[r["setting"]] = dict(r, faces=faces.get(r["mesh"], 0))
     meshes = [m for m, d in done.items() if all(s in d and "error" not in d[s] for s in settings)]
-    med = statistics.median
-    for label, ms in (("every setting finished", meshes),
-                      ("those with a CoACD 0.05 row too", [m for m in meshes if "hulls" in coacd.get(m, {})])):
-        print(f"\n{len(ms)} meshes: {label} (medians; time: total)\n")
-        print("| setting | hulls | hull error % diag | worst hull / tau | parts over tau | time (s) |")
-        print("| --- | --- | --- | --- | --- | --- |")
-        for s in settings:
-            rs = [done[m][s] for m in ms]
-            print(f"| {s} | {med(r['hulls'] for r in rs)} | {100 * med(r['hull_error'] for r in rs):.2f} | "
-                  f"{max(r['worst'] for r in rs):.3f} | {sum(r['over'] for r in rs)} | {sum(r['time'] for r in rs):.0f} |")
-        if ms and all("hulls" in coacd.get(m, {}) for m in ms):
-            cs = [coacd[m] for m in ms]
-            print(f"| CoACD 0.05 (published rows) | {med(c['hulls'] for c in cs)} | "
-                  f"{100 * med(c['hull_error'] for c in cs):.2f} | | | {sum(c['time'] for c in cs):.0f} |")
-    faces = {r["mesh"]: r["faces"] for r in peers}
-    for s in settings:
-        ours = [dict(d[s], method="ours", setting=s, faces=faces[m]) for m, d in done.items() if s in d and m in faces]
+    table(done, settings, meshes, "every setting finished", coacd)
+    table(done, settings, [m for m in meshes if "hulls" in coacd.get(m, {})], "those with a CoACD 0.05 row too", coacd)
+    for s in (s for s in settings if not s.startswith("coacd")):
+        ours = [dict(d[s], method="ours", setting=s) for m, d in done.items() if s in d and m in faces]
         print(f"\n{s}: " + " ".join(br.front(br.sample_rows(peers + ours), ours=("ours", s))))
+        for c in (c for c in settings if c.startswith("coacd")):
+            print(time_against(done, s, c))
 
 
 def main():
@@ -101,8 +135,11 @@ def main():
         for s in settings:
             if (name, s) in have:
                 continue
-            sel, tau, merge, *wrap = s.split(":")
-            row = dict(mesh=name, setting=s, **run(p, inp, sel, float(tau), merge == "1", args.timeout, wrap))
+            if s.startswith("coacd:"):
+                row = dict(mesh=name, setting=s, **run_coacd(inp, float(s.split(":")[1]), args.timeout))
+            else:
+                sel, tau, merge, *wrap = s.split(":")
+                row = dict(mesh=name, setting=s, **run(p, inp, sel, float(tau), merge == "1", args.timeout, wrap))
             rows.append(row)
             with out.open("a") as f:
                 f.write(json.dumps(row) + "\n")
