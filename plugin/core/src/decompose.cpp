@@ -226,16 +226,15 @@ std::optional<Vec3> rim_normal(const TriMesh& m, const Topology& topo, int r, co
 // A smooth or wrapped surface has no such flat, so it adds no plane to score there.
 std::optional<Vec3> floor_normal(const TriMesh& m, const Vec3& p, const NotchEdge& ne, const Vec3& bridge)
 {
-	const Vec3   n   = ne.faces[0].dot(bridge) >= ne.faces[1].dot(bridge) ? ne.faces[0] : ne.faces[1];
-	const double eps = 1e-6 * extent(m.V);
+	const Vec3   n     = ne.faces[0].dot(bridge) >= ne.faces[1].dot(bridge) ? ne.faces[0] : ne.faces[1];
+	const Plane  floor = through(p, n);
+	const double eps   = 1e-6 * extent(m.V);
 	double       on = 0, all = 0;
 	for (const Tri& t : m.F) {
 		const Vec3   c    = (m.V[t[1]] - m.V[t[0]]).cross(m.V[t[2]] - m.V[t[0]]);
 		const double area = c.norm();
 		all += area;
-		bool flat = area > 0 && c.dot(n) > (1 - 1e-9) * area;
-		for (int k = 0; k < 3 && flat; ++k) flat = std::abs(n.dot(m.V[t[k]] - p)) <= eps;
-		if (flat) on += area;
+		if (area > 0 && c.dot(n) > (1 - 1e-9) * area && floor.holds(m.V, t, eps)) on += area;
 	}
 	return on >= 0.1 * all ? std::optional<Vec3>(n) : std::nullopt;
 }
