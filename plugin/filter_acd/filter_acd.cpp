@@ -10,7 +10,9 @@
 #include "messages.h"
 #include "parameters.h"
 
-#include <acd/decompose.h>
+#include <acd/decompose3/decompose.h>
+#include "acd/structure/level_of_detail.h"
+#include <acd/solid/solid.h>
 
 namespace {
 
@@ -165,7 +167,7 @@ RichParameterList FilterACD::initParameterList(const QAction* a, const MeshModel
 	case POLYGON_DECOMPOSITION: acdml::add_polygon_parameters(p); return p;
 	case LEVEL_OF_DETAIL: acdml::add_level_of_detail_parameters(p); return p;
 	case SKELETON:
-		acdml::add_decomposition_parameters(p, 3.0, 2, false, false, false);
+		acdml::add_decomposition_parameters(p, {3.0, "min_section", false, false, false});
 		p.addParam(RichInt("max_refinement", 3, "Skeleton: refinement depth",
 		                   "A part whose axis leaves it or runs off-centre is split across its axis, at most "
 		                   "this many times over (0 = never)."));
@@ -176,7 +178,7 @@ RichParameterList FilterACD::initParameterList(const QAction* a, const MeshModel
 		                     "middle of that width (the chord runs along one side of a bent piece)."));
 		return p;
 	case HULL_UNION:
-		acdml::add_decomposition_parameters(p, 5.0, 3, false, true, true);
+		acdml::add_decomposition_parameters(p, {5.0, nullptr, false, true, true});
 		p.addParam(RichEnum("merge", 0, QStringList{"together", "boolean_union"}, "Merged layer",
 		                    "together: the hulls in one layer (overlapping shells; fast); boolean_union: their true "
 		                    "union by CGAL corefinement with exact constructions (one closed surface; slower)."));
@@ -184,7 +186,7 @@ RichParameterList FilterACD::initParameterList(const QAction* a, const MeshModel
 		                   "Monte Carlo samples for the volume IoU between the union and the mesh."));
 		return p;
 	default:
-		acdml::add_decomposition_parameters(p, 2.5, 3, true, true, true);
+		acdml::add_decomposition_parameters(p, {-1, nullptr, true, true, true});
 		p.addParam(RichString("tree_file", "", "Save tree as (JSON)",
 		                      "If set, the whole cut tree (nodes, parents, paths, planes, concavity, volume) is "
 		                      "written to this JSON file; layer names are the leaves' paths. Empty: not written.",

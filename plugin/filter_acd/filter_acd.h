@@ -7,7 +7,9 @@
 
 #include <common/plugins/interfaces/filter_plugin.h>
 
-#include <acd/decompose.h>
+#include <acd/decompose3/decompose.h>
+#include <acd/prepare/prepare_solid.h>
+#include <acd/solid/solid.h>
 
 class FilterACD : public QObject, public FilterPlugin
 {
@@ -43,14 +45,13 @@ private:
 	// options from the shared parameters, log lines.
 	struct Run
 	{
-		acd::Solid            solid;
+		acd::PreparedSolid    prepared;   // the solid decomposed, and how it was made from the input
 		acd::DecomposeOptions options;
 		double                size = 0;
 		acd::Decomposition    d;
-		double                wrap_alpha = 0;   // the alpha wrap's alpha (% of size); 0: not wrapped
-		int                   welded     = 0;   // vertices welded (preprocessing = auto)
 	};
-	Run runDecomposition(const RichParameterList& par, MeshModel& input, vcg::CallBackPos* cb);
+	Run  runDecomposition(const RichParameterList& par, MeshModel& input, vcg::CallBackPos* cb);
+	void log_prepared(const acd::PreparedSolid& p);
 	std::map<std::string, QVariant> notchConcavity(MeshModel& m, vcg::CallBackPos* cb);
 	std::map<std::string, QVariant>
 	decompose(const RichParameterList& par, MeshDocument& md, vcg::CallBackPos* cb);

@@ -8,13 +8,15 @@
 #include "meshlab_convert.h"
 #include "parameters.h"
 
-#include <acd/decompose.h>
-#include <acd/hull_union.h>
-#include <acd/polygon.h>
-#include <acd/skeleton.h>
-#include <acd/tree_io.h>
-#include <acd/preprocess.h>
-#include <acd/wrap_solid.h>
+#include <acd/decompose3/decompose.h>
+#include "acd/structure/level_of_detail.h"
+#include <acd/hull/hull_union.h>
+#include <acd/polygon/polygon.h>
+#include <acd/structure/skeleton.h>
+#include <acd/io/tree_io.h>
+#include <acd/decompose3/decompose_mesh.h>
+#include <acd/mesh/measures.h>
+#include <acd/solid/solid.h>
 
 #include <vcg/complex/algorithms/update/color.h>
 
@@ -42,7 +44,6 @@ QString self_intersection_message(long n)
 // Bytes the decomposition needs per input face at most (measured: 631 MB for 1.07M faces in
 // bisector mode, including pymeshlab's own copy; best mode keeps more candidates alive).
 constexpr double kBytesPerFace = 1500;
-constexpr double kAutoMaxAlpha = 16;   // % of size: the coarsest wrap preprocessing = auto tries
 
 // Memory the system can still give us (Linux: MemAvailable; other POSIX systems: free pages), 0 if
 // unknown (Windows): the check is then skipped.
@@ -173,51 +174,32 @@ FilterACD::Run FilterACD::runDecomposition(const RichParameterList& par, MeshMod
 		                      .arg(raw.F.size())
 		                      .arg(kBytesPerFace * raw.F.size() / 1e6, 0, 'f', 0)
 		                      .arg(avail / 1e6, 0, 'f', 0));
-	double                    wrapped_alpha = 0;
-	int                       welded        = 0;
-	std::optional<acd::Solid> validated;   // auto has validated the mesh it keeps unwrapped
-	const acdml::Preprocessing pre = acdml::preprocessing(par);
-	if (pre != acdml::Preprocessing::None) {
-		std::vector<acd::Vec3> finite;
-		for (const acd::Vec3& p : raw.V)
-			if (p.allFinite()) finite.push_back(p);
-		if (finite.empty()) throw MLException("The mesh has no vertex with finite coordinates.");
-		const double d0 = acd::enclosing_diameter(finite), alpha = par.getFloat("wrap_alpha");
-		const double offset = par.getFloat("wrap_offset") / 100 * d0;
-		if (cb) cb(0, pre == acdml::Preprocessing::AlphaWrap ? "Alpha wrapping the input..." : "Checking the input (as given, welded or wrapped)...");
-		const size_t before = raw.F.size();
-		if (pre == acdml::Preprocessing::AlphaWrap) {
-			raw           = acd::alpha_wrap(raw, alpha / 100 * d0, offset);
-			wrapped_alpha = alpha;
-		} else {
-			acd::WrapSolidResult w = acd::wrap_solid(raw, alpha / 100 * d0, offset, kAutoMaxAlpha / 100 * d0);
-			validated              = std::move(w.solid);
-			if (w.welded > 0) {
-				log("Not decomposable as given (%s) Welding %d vertices within 1e-5 of its size made it a valid "
-				    "solid; it is decomposed welded, not wrapped.", w.reason.c_str(), w.welded);
-				raw    = std::move(w.mesh);
-				welded = w.welded;
-			}
-			if (w.wrapped) {
-				log("Not decomposable as given (%s) It is alpha wrapped: %d wrap(s), alpha %g%% kept, holding "
-				    "%.0f%% of the input's interior.", w.reason.c_str(), w.tries, w.alpha / d0 * 100, 100 * w.inside);
-				raw           = std::move(w.mesh);
-				wrapped_alpha = w.alpha / d0 * 100;
-			}
-		}
-		if (wrapped_alpha > 0)
-			log("Alpha wrap: %zu faces in, %zu out; the wrap lies about %g outside the input (alpha %g)", before,
-			    raw.F.size(), offset, wrapped_alpha / 100 * d0);
-	}
-	acd::Solid s = validated ? std::move(*validated) : acd::make_solid(raw);
-	if (s.self_intersections > 0) {
-		if (acdml::refuse_self_intersection(par)) throw MLException(self_intersection_message(s.self_intersections));
-		log("Warning: %s", qUtf8Printable(self_intersection_message(s.self_intersections)));
-	}
+	const acd::PrepareOptions prep = acdml::prepare_options(par);
+	if (cb && prep.mode != acd::Preprocessing::None)
+		cb(0, prep.mode == acd::Preprocessing::AlphaWrap ? "Alpha wrapping the input..." : "Checking the input (as given, welded or wrapped)...");
+	// tau may be a share of the size: the prepared solid's.
+	acd::MeshDecomposition md = acd::decompose_mesh(raw, prep, [&](const acd::PreparedSolid& p) {
+		log_prepared(p);
+		return acdml::decompose_options(par, acd::enclosing_diameter(p.solid.mesh.V), cb);
+	});
+	if (!md.fallback.empty()) log("Decomposed as given, %s: alpha wrapped instead.", md.fallback.c_str());
+	const double size = acd::enclosing_diameter(md.prepared.solid.mesh.V);
+	return {std::move(md.prepared), md.options, size, std::move(md.d)};
+}
 
-	const double                size = acd::enclosing_diameter(s.mesh.V);
-	const acd::DecomposeOptions o    = acdml::decompose_options(par, size, cb);
-
+void FilterACD::log_prepared(const acd::PreparedSolid& p)
+{
+	const acd::Solid& s = p.solid;
+	if (p.done == acd::PreparedSolid::Welded)
+		log("Not decomposable as given (%s) Welding %d vertices within 1e-5 of its size made it a valid solid; it is "
+		    "decomposed welded, not wrapped.", p.reason.c_str(), p.welded);
+	if (p.done == acd::PreparedSolid::Wrapped && !p.reason.empty())
+		log("Not decomposable as given (%s) It is alpha wrapped: %d wrap(s), alpha %g%% kept, holding %.0f%% of the "
+		    "input's interior.", p.reason.c_str(), p.tries, p.alpha / p.size * 100, 100 * p.inside);
+	if (p.done == acd::PreparedSolid::Wrapped)
+		log("Alpha wrap: %zu faces in, %zu out; the wrap lies about %g outside the input (alpha %g)", p.faces_in,
+		    s.mesh.F.size(), p.offset, p.alpha);
+	if (s.self_intersections > 0) log("Warning: %s", qUtf8Printable(self_intersection_message(s.self_intersections)));
 	if (s.reoriented_shells > 0)
 		log("%d of %d shells were oriented against their nesting (outer shells outward, cavities inward) and "
 		    "were turned.", s.reoriented_shells, s.shells);
@@ -225,8 +207,6 @@ FilterACD::Run FilterACD::runDecomposition(const RichParameterList& par, MeshMod
 	if (s.cavities > 0) log("The solid has %d cavities (closed inner shells).", s.cavities);
 	if (s.unreferenced_vertices > 0) log("%d unreferenced vertices were ignored.", s.unreferenced_vertices);
 	if (s.split_vertices > 0) log("%d non-manifold vertices were split into one copy per fan.", s.split_vertices);
-	acd::Decomposition d = acd::decompose(s, o);
-	return {std::move(s), o, size, std::move(d), wrapped_alpha, welded};
 }
 
 std::map<std::string, QVariant>
@@ -235,7 +215,7 @@ FilterACD::decompose(const RichParameterList& par, MeshDocument& md, vcg::CallBa
 	const auto          t0    = std::chrono::steady_clock::now();
 	MeshModel&          input = *md.mm();
 	Run                 run   = runDecomposition(par, input, cb);
-	const acd::Solid&   s     = run.solid;
+	const acd::Solid&   s     = run.prepared.solid;
 	const auto&         o     = run.options;
 	const double        size  = run.size;
 	acd::Decomposition& d     = run.d;
@@ -287,9 +267,10 @@ FilterACD::decompose(const RichParameterList& par, MeshDocument& md, vcg::CallBa
 		{"merges", d.merges},
 		{"merge_time_limit_reached", d.merge_time_limit_reached},
 		{"tree_nodes", (int) d.nodes.size()},
-		{"alpha_wrapped", run.wrap_alpha > 0},
-		{"wrap_alpha_used", run.wrap_alpha},
-		{"welded_vertices", run.welded},
+		{"alpha_wrapped", run.prepared.done == acd::PreparedSolid::Wrapped},
+		{"wrap_alpha_used", run.prepared.done == acd::PreparedSolid::Wrapped ? 100 * run.prepared.alpha_share : 0.0},
+		{"welded_vertices", run.prepared.welded},
+		{"preprocessing_done", QString::fromStdString(acd::describe(run.prepared))},
 		{"self_intersections", (int) s.self_intersections},
 		{"cavities", s.cavities},
 		{"hole_cuts", d.hole_cuts},
@@ -361,14 +342,14 @@ std::map<std::string, QVariant> FilterACD::hullUnion(const RichParameterList& pa
 	add_layer(md, "acd_hull_union", merged, &input, -1);
 	const int samples = par.getInt("iou_samples");
 	double    se      = 0;
-	const double iou  = samples > 0 ? acd::volume_iou(run.solid.mesh, hulls, samples, 1, &se) : 0;
+	const double iou  = samples > 0 ? acd::volume_iou(run.prepared.solid.mesh, hulls, samples, 1, &se) : 0;
 	const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-	const double reduction = merged.F.empty() ? 0 : double(run.solid.mesh.F.size()) / double(merged.F.size());
+	const double reduction = merged.F.empty() ? 0 : double(run.prepared.solid.mesh.F.size()) / double(merged.F.size());
 	log("Hull union: %d hulls, %zu faces merged (%s) from %zu input faces (%.1fx fewer), volume IoU %.4f +- %.4f, %.2f s",
-	    idx, merged.F.size(), boolean ? "boolean union" : "together", run.solid.mesh.F.size(), reduction, iou, se, secs);
+	    idx, merged.F.size(), boolean ? "boolean union" : "together", run.prepared.solid.mesh.F.size(), reduction, iou, se, secs);
 	return {
 		{"hulls", idx},
-		{"input_faces", (int) run.solid.mesh.F.size()},
+		{"input_faces", (int) run.prepared.solid.mesh.F.size()},
 		{"union_faces", (int) merged.F.size()},
 		{"face_reduction", reduction},
 		{"volume_iou", iou},

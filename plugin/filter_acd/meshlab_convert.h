@@ -1,7 +1,7 @@
 // CMeshO <-> the core's TriMesh.
 #pragma once
 
-#include <acd/mesh.h>
+#include <acd/mesh/mesh.h>
 #include <common/ml_document/cmesh.h>
 
 namespace acdml {

@@ -37,6 +37,10 @@ QString message(const acd::Error& e)
 	case acd::Error::NonManifoldBoundary:
 		return "The mesh's boundary touches itself at a vertex (non-manifold boundary); repair it with 'Repair "
 		       "non Manifold Vertices'.";
+	case acd::Error::SelfIntersection:
+		return "The mesh intersects itself (" + n + " pairs of faces cross away from shared corners). Repair it "
+		       "with preprocessing = alpha_wrap or MeshLab's 'Alpha Wrap', or find the faces with 'Select Self "
+		       "Intersecting Faces'.";
 	default:
 		if (e.kind == acd::Error::Internal) return QString("Internal error in the convex decomposition: ") + e.what();
 		return QString::fromStdString(e.what());

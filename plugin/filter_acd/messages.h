@@ -5,7 +5,7 @@
 #ifndef FILTER_ACD_MESSAGES_H
 #define FILTER_ACD_MESSAGES_H
 
-#include <acd/mesh.h>
+#include <acd/mesh/mesh.h>
 
 #include <QString>
 

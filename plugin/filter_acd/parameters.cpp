@@ -6,6 +6,8 @@
 
 #include <common/mlexception.h>
 
+#include <acd/api/options.h>
+
 #include <array>
 #include <cmath>
 #include <utility>
@@ -30,123 +32,64 @@ template <class E, size_t N> E chosen(const RichParameterList& par, const char* 
 	return c[i >= 0 && i < (int) N ? i : 0].second;
 }
 
-enum class TauUnit { PercentOfSize, ModelUnits };
+// The core's table of options declares the 3D parameters; 2D keeps its own choices here.
+const acd::Option& opt(const char* name) { return acd::option(name); }
 
-const Choices<TauUnit, 2> kTauUnits = {{{"percent_of_size", TauUnit::PercentOfSize}, {"model_units", TauUnit::ModelUnits}}};
-// New choices go last: .mlx scripts store the index.
-const Choices<acd::CutPlaneSelection, 4> kCutPlanes = {{{"best", acd::CutPlaneSelection::Best},
-                                                        {"bisector", acd::CutPlaneSelection::Bisector},
-                                                        {"min_section", acd::CutPlaneSelection::MinSection},
-                                                        {"bisector_or_face", acd::CutPlaneSelection::BisectorOrFace}}};
+QStringList labels(const acd::Option& o)
+{
+	QStringList l;
+	for (const acd::OptionChoice& c : o.choices) l << c.label;
+	return l;
+}
+
+template <class E> E chosen(const RichParameterList& par, const acd::Option& o)
+{
+	const int i = par.getEnum(o.name);
+	return E(o.choices[i >= 0 && i < (int) o.choices.size() ? i : 0].value);
+}
+
+// A parameter declared from its row, with `value` as its default.
+void add(RichParameterList& p, const acd::Option& o, double value)
+{
+	const QString help = QString::fromStdString(o.full_help());
+	switch (o.kind) {
+	case acd::Option::Number: p.addParam(RichFloat(o.name, (float) value, o.title, help)); break;
+	case acd::Option::Integer: p.addParam(RichInt(o.name, (int) value, o.title, help)); break;
+	case acd::Option::Flag: p.addParam(RichBool(o.name, value != 0, o.title, help)); break;
+	case acd::Option::Choice: p.addParam(RichEnum(o.name, o.index_of((int) value), labels(o), o.title, help)); break;
+	}
+}
+void add(RichParameterList& p, const char* name) { add(p, opt(name), opt(name).value); }
+
 const Choices<acd::CutLineSelection, 2> kCutLines = {{{"best", acd::CutLineSelection::Best},
                                                       {"bisector", acd::CutLineSelection::Bisector}}};
-const Choices<acd::HoleHandling, 3> kCavityCuts = {{{"best_plane", acd::HoleHandling::BestPlane},
-                                                    {"principal_plane", acd::HoleHandling::PrincipalPlane},
-                                                    {"keep_cavities", acd::HoleHandling::KeepCavities}}};
 // A polygon's holes take the same labels as a solid's cavities (scripts use either filter alike).
 const Choices<acd::HoleCut, 3> kHoleCuts = {{{"best_plane", acd::HoleCut::BestLine},
                                              {"principal_plane", acd::HoleCut::PrincipalAxis},
                                              {"keep_cavities", acd::HoleCut::KeepHoles}}};
-const Choices<acd::HoleOrder, 2> kHoleOrders = {{{"first", acd::HoleOrder::First},
-                                                 {"by_concavity", acd::HoleOrder::ByConcavity}}};
-const Choices<Preprocessing, 3> kPreprocessing = {{{"none", Preprocessing::None},
-                                                   {"alpha_wrap", Preprocessing::AlphaWrap},
-                                                   {"auto", Preprocessing::Auto}}};
-const Choices<bool, 2> kOnSelfIntersection = {{{"warn", false}, {"refuse", true}}};
 
-// The alpha wrap's two lengths (percentages of the size), in menu order.
-struct Number
-{
-	const char* name;
-	float       value;
-	const char* label;
-	const char* help;
-};
-const Number kWrapNumbers[] = {
-	{"wrap_alpha", 2.0f, "Alpha wrap: alpha (%)",
-	 "With alpha_wrap: gaps, holes and cavities narrower than about this are closed, as a percentage of the "
-	 "enclosing-sphere diameter (smaller keeps more detail and costs more)."},
-	{"wrap_offset", 0.1f, "Alpha wrap: offset (%)",
-	 "With alpha_wrap: how far outside the input the wrap lies, i.e. how far it may move the surface, as a "
-	 "percentage of the enclosing-sphere diameter."},
-};
-
-// tau and its unit, as 3D and 2D declare them (`size_of`: what the percentage is of).
+// tau and its unit as 2D declares them (3D's come from the table).
 void add_tau(RichParameterList& p, float tau, const QString& size_of)
 {
 	p.addParam(RichFloat("tau", tau, "Concavity tolerance (tau)",
-	                     "Largest concavity a part may keep. With tau_unit = percent_of_size it is a percentage of the "
-	                     "diameter of the " + size_of + " (a size that does not change when the shape is rotated); "
-	                     "with model_units it is an absolute length."));
-	p.addParam(RichEnum("tau_unit", 0, labels(kTauUnits), "Unit of tau",
-	                    "percent_of_size: tau is a percentage of the " + size_of + "'s diameter; model_units: tau "
-	                    "is a length in the layer's units."));
+	                     "Largest concavity a piece may keep. With tau_unit = percent_of_size it is a percentage of the "
+	                     "diameter of the " + size_of + "; with model_units it is an absolute length."));
+	add(p, "tau_unit");
 }
 
 } // namespace
 
-void add_decomposition_parameters(RichParameterList& p, float tau, int cut_plane_default, bool output_hulls,
-                                  bool max_hull_vertices, bool merge)
+void add_decomposition_parameters(RichParameterList& p, const DecompositionParameters& which)
 {
-	add_tau(p, tau, "mesh's smallest enclosing sphere");
-	p.addParam(RichEnum(
-		"cut_plane_selection", cut_plane_default, labels(kCutPlanes), "Cutting plane",
-		"best: try several planes through the notch (the bisector, planes around its retraction "
-		"direction, the plane parallel to its bridge) and keep the one leaving the least concave parts; "
-		"bisector: the paper's plane through the notch edge bisecting its reflex angle (faster); "
-		"min_section: of the planes through the notch and its retraction direction, the one cutting the "
-		"smallest cross-section (the neck), which surface noise hardly moves (the skeleton's default); "
-		"bisector_or_face: the bisector, or at a sharp notch edge (a CAD step, slot or flange) one of its two "
-		"faces extended, or the plane of the rim the notch edge lies on (a groove's or step's ring), or the "
-		"flat a shallow notch rises from (a low boss or ramp on a plate), when that leaves clearly less "
-		"concave parts (near the bisector's speed)."));
-	p.addParam(RichEnum(
-		"hole_handling", 0, labels(kCavityCuts), "Cavities (hole boundaries)",
-		"How closed inner shells (cavities) are resolved; their notches never reach the hull. "
-		"principal_plane: the paper's cut through the cavity's centre along its principal plane (the "
-		"plane of its two major axes); best_plane: that plane, the other two principal planes and planes "
-		"through the cavity towards the nearest hull facet, keeping the one leaving the least concave "
-		"parts; keep_cavities: never cut for a cavity, measure concavity on the outer surface only and "
-		"report the cavities left inside parts (those parts are then not tau-convex)."));
-	p.addParam(RichEnum(
-		"hole_order", 0, labels(kHoleOrders), "Cavity order",
-		"first: the paper (a cavity's concavity is infinite): every cavity is cut before any notch; "
-		"by_concavity: a cavity is cut when its depth below the hull is the largest concavity left."));
-	p.addParam(RichInt(
-		"max_parts", 0, "Maximum number of parts",
-		"Stop after this many parts (0 = no limit); the most concave notches are cut first, and the "
-		"result reports whether the limit was reached."));
-	if (merge)
-		p.addParam(RichBool(
-			"merge_parts", true, "Merge neighbouring parts",
-			"After the cuts, merge parts that share a cut face while their union stays within tau (by the "
-			"same measure as the cuts, hull distance included), the least concave union first: fewer "
-			"parts, still an exact partition. Off: the cut tree's leaves as they are."));
-	if (output_hulls)
-		p.addParam(RichBool("output_hulls", false, "Also add part hulls",
-		                    "Add the convex hull of each part as a layer too (named acd_hull_<path>)."));
-	if (max_hull_vertices)
-		p.addParam(RichInt("max_hull_vertices", 0, "Maximum hull vertices",
-		                   "With output_hulls: limit each hull to this many vertices (0 = no limit), as physics "
-		                   "engines require; extra vertices are dropped (the hull shrinks slightly)."));
-	p.addParam(RichEnum(
-		"preprocessing", 0, labels(kPreprocessing), "Preprocessing",
-		"none: the mesh must be a closed, 2-manifold, oriented solid that does not intersect itself; "
-		"alpha_wrap: first wrap it with CGAL's 3D alpha wrapping, which turns open, non-manifold, "
-		"self-intersecting meshes, triangle soups and point clouds into one closed solid (the parts "
-		"then decompose the wrap, which lies about wrap_offset outside the input); auto: as given when "
-		"it is a valid solid, else welded (vertices within 1e-5 of its size) if that makes it one, else "
-		"alpha wrapped, doubling alpha (up to 16%) while the wrap is a hollow skin that slipped inside "
-		"through small holes; an open shell that no such wrap fills keeps the first wrap, its skin."));
-	for (const Number& n : kWrapNumbers) p.addParam(RichFloat(n.name, n.value, n.label, n.help));
-	p.addParam(RichEnum(
-		"on_self_intersection", 0, labels(kOnSelfIntersection), "If the mesh intersects itself",
-		"warn: decompose anyway and say so in the log and result (slight crossings, common in scans, "
-		"are harmless; a cut that would make an open part fails with a message instead); refuse: stop "
-		"with an error."));
-	p.addParam(RichFloat("time_limit", 0, "Time limit (s)",
-	                     "Stop cutting after this many seconds (0 = no limit) and return the parts found so far; merging "
-	                     "(merge_parts) shares the same limit and stops with the parts it has merged."));
+	for (const acd::Option& o : acd::decomposition_options()) {
+		const std::string name = o.name;
+		if ((name == "output_hulls" && !which.output_hulls) || (name == "max_hull_vertices" && !which.max_hull_vertices)) continue;
+		if (name == "merge_parts" && !which.merge) continue;
+		double value = o.value;
+		if (name == "tau" && which.tau > 0) value = which.tau;
+		if (name == "cut_plane_selection" && which.cut_plane) value = o.value_of(which.cut_plane);
+		add(p, o, value);
+	}
 }
 
 void add_polygon_parameters(RichParameterList& p)
@@ -163,7 +106,7 @@ void add_polygon_parameters(RichParameterList& p)
 		"through its centre; best_plane: that axis, the minor axis and 6 more directions through the "
 		"centre, keeping the cut leaving the least concave pieces; keep_cavities: never cut for a hole, "
 		"measure the outer boundary only and report the holes kept (those pieces are not tau-convex)."));
-	p.addParam(RichEnum("hole_order", 0, labels(kHoleOrders), "Hole order",
+	p.addParam(RichEnum("hole_order", 0, labels(opt("hole_order")), "Hole order",
 	                    "first: the paper (a hole's concavity is infinite): holes are cut before any notch; "
 	                    "by_concavity: a hole is cut when its depth below the hull is the largest concavity."));
 	p.addParam(RichInt("max_parts", 0, "Maximum number of pieces",
@@ -181,8 +124,7 @@ void add_level_of_detail_parameters(RichParameterList& p)
 	                    "tau: cut the tree where parts are within this tau; depth: at this tree depth."));
 	p.addParam(RichFloat("tau", 5.0, "Coarser tau",
 	                     "With level_by = tau: the concavity a part may keep (at least the tree's own tau)."));
-	p.addParam(RichEnum("tau_unit", 0, labels(kTauUnits), "Unit of tau",
-	                    "percent_of_size: a percentage of the mesh's enclosing-sphere diameter; model_units."));
+	add(p, "tau_unit");
 	p.addParam(RichInt("depth", 1, "Depth", "With level_by = depth: the root is depth 0."));
 	p.addParam(RichBool("output_hulls", false, "Also add part hulls",
 	                    "Add each part's saved convex hull as a layer (acd_hull_<path>)."));
@@ -192,17 +134,17 @@ double tau_in_model_units(const RichParameterList& par, double size)
 {
 	const double tau = par.getFloat("tau");
 	if (!(tau > 0) || !std::isfinite(tau)) throw MLException(QString("tau must be positive (got %1).").arg(tau));
-	return chosen(par, "tau_unit", kTauUnits) == TauUnit::PercentOfSize ? tau / 100.0 * size : tau;
+	return chosen<acd::TauUnit>(par, opt("tau_unit")) == acd::TauUnit::PercentOfSize ? tau / 100.0 * size : tau;
 }
 
 acd::DecomposeOptions decompose_options(const RichParameterList& par, double size, vcg::CallBackPos* cb)
 {
 	acd::DecomposeOptions o;
 	o.tau                 = tau_in_model_units(par, size);
-	o.cut_plane_selection = chosen(par, "cut_plane_selection", kCutPlanes);
+	o.cut_plane_selection = chosen<acd::CutPlaneSelection>(par, opt("cut_plane_selection"));
 	o.max_parts           = par.getInt("max_parts");
-	o.hole_handling       = chosen(par, "hole_handling", kCavityCuts);
-	o.hole_order          = chosen(par, "hole_order", kHoleOrders);
+	o.hole_handling       = chosen<acd::HoleHandling>(par, opt("hole_handling"));
+	o.hole_order          = chosen<acd::HoleOrder>(par, opt("hole_order"));
 	o.time_limit_seconds  = par.getFloat("time_limit");
 	// The skeleton follows the cut tree, so its filter has no merge.
 	o.merge_parts         = par.hasParameter("merge_parts") && par.getBool("merge_parts");
@@ -218,14 +160,21 @@ acd::PolygonOptions polygon_options(const RichParameterList& par, double size)
 	o.tau                = tau_in_model_units(par, size);
 	o.cut_line_selection = chosen(par, "cut_line_selection", kCutLines);
 	o.hole_handling      = chosen(par, "hole_handling", kHoleCuts);
-	o.hole_order         = chosen(par, "hole_order", kHoleOrders);
+	o.hole_order         = chosen<acd::HoleOrder>(par, opt("hole_order"));
 	o.max_parts          = par.getInt("max_parts");
 	if (o.max_parts < 0) throw MLException("max_parts must be 0 (no limit) or positive.");
 	return o;
 }
 
-Preprocessing preprocessing(const RichParameterList& par) { return chosen(par, "preprocessing", kPreprocessing); }
-
-bool refuse_self_intersection(const RichParameterList& par) { return chosen(par, "on_self_intersection", kOnSelfIntersection); }
+acd::PrepareOptions prepare_options(const RichParameterList& par)
+{
+	acd::PrepareOptions o;
+	o.mode   = chosen<acd::Preprocessing>(par, opt("preprocessing"));
+	o.alpha  = par.getFloat("wrap_alpha") / 100;
+	o.offset = par.getFloat("wrap_offset") / 100;
+	o.refuse_self_intersection = chosen<int>(par, opt("on_self_intersection")) == 1;
+	if (o.mode != acd::Preprocessing::None && (!(o.alpha > 0) || !(o.offset > 0))) throw MLException("wrap_alpha and wrap_offset must be positive.");
+	return o;
+}
 
 } // namespace acdml

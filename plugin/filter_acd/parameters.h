@@ -11,15 +11,23 @@
 #include <common/parameters/rich_parameters.h>
 #include <wrap/callback.h>   // vcg::CallBackPos
 
-#include <acd/decompose.h>
-#include <acd/polygon.h>
+#include <acd/decompose3/decompose.h>
+#include <acd/polygon/polygon.h>
+#include <acd/prepare/prepare_solid.h>
 
 namespace acdml {
 
-// Parameters of the filters that decompose a mesh (decomposition, skeleton, hull union); `tau`
-// and the cut's default differ per filter; `merge` offers merge_parts (off where absent).
-void add_decomposition_parameters(RichParameterList& p, float tau, int cut_plane_default, bool output_hulls,
-                                  bool max_hull_vertices, bool merge);
+// Which of the decomposition's parameters a filter declares, and where its defaults differ from the
+// options table's (acd/api/options.h).
+struct DecompositionParameters
+{
+	double      tau = -1;               // < 0: the table's
+	const char* cut_plane = nullptr;    // a label; nullptr: the table's
+	bool        output_hulls = false;
+	bool        max_hull_vertices = false;
+	bool        merge = false;          // merge_parts (the skeleton follows the cut tree: none)
+};
+void add_decomposition_parameters(RichParameterList& p, const DecompositionParameters& which);
 void add_polygon_parameters(RichParameterList& p);
 void add_level_of_detail_parameters(RichParameterList& p);
 
@@ -30,9 +38,8 @@ double tau_in_model_units(const RichParameterList& par, double size);
 acd::DecomposeOptions decompose_options(const RichParameterList& par, double size, vcg::CallBackPos* cb);
 acd::PolygonOptions   polygon_options(const RichParameterList& par, double size);
 
-enum class Preprocessing { None, AlphaWrap, Auto };
-Preprocessing preprocessing(const RichParameterList& par);
-bool          refuse_self_intersection(const RichParameterList& par);
+// How the mesh is prepared (preprocessing, wrap_alpha, wrap_offset, on_self_intersection).
+acd::PrepareOptions prepare_options(const RichParameterList& par);
 
 } // namespace acdml
 

@@ -11,7 +11,7 @@
 //               contacts) and how deep the union's boundary lies inside it (gaps between hulls).
 //   iou:        volume IoU of the union of hulls and the input solid, by uniform Monte Carlo samples
 //               in the common bounding box; iou_stderr its standard error. null if the input is not closed.
-#include "acd/hull.h"
+#include "acd/hull/hull.h"
 #include "obj_io.h"
 
 #include <CGAL/AABB_face_graph_triangle_primitive.h>

@@ -2,8 +2,10 @@
 //   acd_run mesh.obj tau_percent [bisector_or_face|bisector|best|min_section][+merge] [max_parts]
 // ACD_RUN_WRAP=alpha_percent wraps the mesh first as preprocessing = auto does (welded or wrapped),
 // ACD_RUN_OFFSET=percent at that offset (0.1 unless given).
-#include "acd/decompose.h"
-#include "acd/wrap_solid.h"
+#include "acd/decompose3/decompose.h"
+#include "acd/prepare/wrap_solid.h"
+#include "acd/mesh/measures.h"
+#include "acd/solid/solid.h"
 #include "obj_io.h"
 
 #include <chrono>

@@ -1,7 +1,7 @@
 // Minimal OBJ reading and writing for the command-line tools (groups by "o"/"g" lines).
 #pragma once
 
-#include "acd/mesh.h"
+#include "acd/mesh/mesh.h"
 
 #include <fstream>
 #include <sstream>

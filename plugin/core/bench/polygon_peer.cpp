@@ -1,7 +1,7 @@
 // 2D benchmark driver: our polygon decomposition at several tau values beside CGAL's Partition_2
 // (optimal_convex_partition_2, approx_convex_partition_2, greene_approx_convex_partition_2) on the
 // same polygon, one JSON line per method. Reads the acd2d .poly format (see pymeshlab_acd/polygon_io.py).
-#include <acd/polygon.h>
+#include <acd/polygon/polygon.h>
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Partition_traits_2.h>

@@ -1,4 +1,5 @@
 #include "shapes.h"
+#include "acd/mesh/measures.h"
 
 #include <cmath>
 #include <map>

@@ -1,7 +1,7 @@
 // Test solids built from their definition: boxes, extruded polygons, spheres, tori.
 #pragma once
 
-#include "acd/mesh.h"
+#include "acd/mesh/mesh.h"
 
 namespace shapes {
 using acd::TriMesh;

@@ -1,4 +1,5 @@
-#include "acd/concavity.h"
+#include "acd/decompose3/concavity.h"
+#include "acd/solid/solid.h"
 #include "shapes.h"
 #include "check.h"
 

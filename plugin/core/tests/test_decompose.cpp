@@ -1,4 +1,6 @@
-#include "acd/decompose.h"
+#include "acd/decompose3/decompose.h"
+#include "acd/mesh/measures.h"
+#include "acd/solid/solid.h"
 #include "shapes.h"
 #include "check.h"
 

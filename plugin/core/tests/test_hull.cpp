@@ -1,4 +1,5 @@
-#include "acd/hull.h"
+#include "acd/hull/hull.h"
+#include "acd/mesh/measures.h"
 #include "check.h"
 #include "shapes.h"
 

@@ -1,6 +1,7 @@
-#include "acd/concavity.h"
-#include "acd/decompose.h"
-#include "acd/hull_reach.h"
+#include "acd/decompose3/concavity.h"
+#include "acd/decompose3/decompose.h"
+#include "acd/hull/hull_reach.h"
+#include "acd/solid/solid.h"
 #include "shapes.h"
 #include "check.h"
 

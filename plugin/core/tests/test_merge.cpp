@@ -1,6 +1,8 @@
-#include "acd/glue.h"
-#include "acd/merge.h"
-#include "acd/separate.h"
+#include "acd/solid/glue.h"
+#include "acd/decompose3/merge.h"
+#include "acd/solid/separate.h"
+#include "acd/mesh/measures.h"
+#include "acd/solid/solid.h"
 #include "check.h"
 #include "shapes.h"
 

@@ -1,4 +1,4 @@
-#include "acd/polygon.h"
+#include "acd/polygon/polygon.h"
 #include "check.h"
 
 using namespace acd;

@@ -1,4 +1,5 @@
-#include "acd/polygon2.h"
+#include "acd/mesh/polygon2.h"
+#include "acd/mesh/measures.h"
 #include "check.h"
 
 using namespace acd;

@@ -1,4 +1,7 @@
-#include "acd/decompose.h"
+#include "acd/decompose3/decompose.h"
+#include "acd/structure/level_of_detail.h"
+#include "acd/mesh/measures.h"
+#include "acd/solid/solid.h"
 #include "check.h"
 #include "shapes.h"
 

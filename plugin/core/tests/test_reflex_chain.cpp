@@ -1,5 +1,7 @@
-#include "acd/decompose.h"
-#include "acd/topology.h"
+#include "acd/decompose3/decompose.h"
+#include "acd/mesh/topology.h"
+#include "acd/mesh/measures.h"
+#include "acd/solid/solid.h"
 #include "shapes.h"
 #include "check.h"
 

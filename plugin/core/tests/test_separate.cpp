@@ -1,4 +1,6 @@
-#include "acd/separate.h"
+#include "acd/solid/separate.h"
+#include "acd/mesh/measures.h"
+#include "acd/solid/solid.h"
 #include "check.h"
 #include "shapes.h"
 

@@ -1,4 +1,5 @@
-#include "acd/skeleton.h"
+#include "acd/structure/skeleton.h"
+#include "acd/solid/solid.h"
 #include "check.h"
 #include "shapes.h"
 

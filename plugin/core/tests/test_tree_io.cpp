@@ -1,4 +1,5 @@
-#include "acd/tree_io.h"
+#include "acd/io/tree_io.h"
+#include "acd/solid/solid.h"
 #include "shapes.h"
 #include "check.h"
 

@@ -1,5 +1,8 @@
-#include "acd/preprocess.h"
-#include "acd/wrap_solid.h"
+#include "acd/prepare/alpha_wrap.h"
+#include "acd/prepare/wrap_solid.h"
+#include "acd/mesh/measures.h"
+#include "acd/solid/solid.h"
+#include "acd/mesh/weld.h"
 #include "shapes.h"
 #include "check.h"
 

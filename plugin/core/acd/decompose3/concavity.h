@@ -1,0 +1,34 @@
+// The paper's notch concavity (Section 6.1, Algorithm 6.1): the distance from a notch to the
+// bridge of the pocket that holds it, with notches assigned to bridges by surface shortest paths.
+#pragma once
+
+#include "acd/hull/hull.h"
+#include "acd/mesh/topology.h"
+#include "acd/mesh/measures.h"
+
+namespace acd {
+
+struct ConcavityReport
+{
+	std::vector<double> vertex_concavity;   // per mesh vertex, model units; 0 on the hull
+	std::vector<int>    vertex_bridge;      // hull facet a vertex's concavity was measured to, or -1
+	int    notches  = 0;     // reflex edges
+	int    bridges  = 0;     // hull facets not covered by the surface
+	int    pockets  = 0;     // connected regions of surface faces not on the hull
+	int    patches  = 0;     // pocket regions after the bridge-path partition
+	double max_concavity = 0;   // over notch vertices
+	int    max_vertex    = -1;  // the most concave notch vertex (-1: no notch)
+	int    max_bridge    = -1;  // hull facet it retracts to
+	PoseFrame frame;            // the part's frame that settled ties (reused for the cut's ties)
+	double hull_reach = 0;        // largest distance from a bridge point to the surface found (see hull_reach.h)
+	double hull_reach_bound = 0;  // no bridge point lies farther from the surface
+	bool   reach_cut = false;     // max_concavity is the bridges' reach, charged to the nearest notch
+};
+
+// `m` must be a closed, edge-manifold, outward-oriented mesh (see make_solid) and `hull` its hull.
+// A part's concavity is the larger of its notches' distances to their bridges and the bridges' reach
+// beyond the surface, so it is never less than how far the part's hull stands off the part. With
+// `tau` > 0 (model units) the reach is refined only as far as deciding against tau needs.
+ConcavityReport measure_concavity(const TriMesh& m, const Topology& topo, const ConvexHull& hull, double tau = 0);
+
+} // namespace acd

@@ -1,0 +1,651 @@
+#include "acd/decompose3/decompose.h"
+#include "acd/decompose3/cut_planes.h"
+#include "acd/hull/hull_reach.h"
+#include "acd/decompose3/merge.h"
+#include "acd/mesh/parallel.h"
+#include "acd/recursion/recursion.h"
+#include "acd/mesh/measures.h"
+#include "acd/solid/solid.h"
+#include "acd/recursion/hole_order.h"
+
+#include <Eigen/Eigenvalues>
+
+#include <CGAL/Cartesian_d.h>
+#include <CGAL/Min_sphere_of_points_d_traits_3.h>
+#include <CGAL/Min_sphere_of_spheres_d.h>
+#include <CGAL/Simple_cartesian.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <functional>
+#include <map>
+#include <memory>
+#include <optional>
+#include <queue>
+#include <set>
+#include <sstream>
+#include <unordered_map>
+#include <unordered_set>
+
+namespace acd {
+
+// The recursion's hole count of a 3D node: its cavities.
+int holes_in(const Node& n)
+{
+	return n.cavities;
+}
+
+
+namespace {
+
+// The faces of each cavity (a shell of negative volume) of a solid.
+std::vector<std::vector<int>> cavity_faces(const TriMesh& m)
+{
+	int                           n = 0;
+	const std::vector<int>        comp = face_components(m, &n);
+	std::vector<std::vector<int>> shell(n);
+	for (int f = 0; f < (int) m.F.size(); ++f) shell[comp[f]].push_back(f);
+	std::vector<std::vector<int>> out;
+	if (n < 2) return out;
+	for (auto& faces : shell) {
+		TriMesh sh;
+		sh.V = m.V;
+		for (int f : faces) sh.F.push_back(m.F[f]);
+		if (signed_volume(sh) < 0) out.push_back(std::move(faces));
+	}
+	return out;
+}
+
+// The solid without its cavities (the same vertex array; unused vertices are harmless to the hull
+// only if dropped, so they are).
+TriMesh outer_surface(const TriMesh& m, const std::vector<std::vector<int>>& cavities)
+{
+	std::vector<char> drop(m.F.size(), 0);
+	for (const auto& c : cavities)
+		for (int f : c) drop[f] = 1;
+	TriMesh          out;
+	std::vector<int> id(m.V.size(), -1);
+	for (int f = 0; f < (int) m.F.size(); ++f) {
+		if (drop[f]) continue;
+		Tri t;
+		for (int k = 0; k < 3; ++k) {
+			int& i = id[m.F[f][k]];
+			if (i < 0) {
+				i = (int) out.V.size();
+				out.V.push_back(m.V[m.F[f][k]]);
+			}
+			t[k] = i;
+		}
+		out.F.push_back(t);
+	}
+	return out;
+}
+
+// What cutting a node needs from its measure; kept while the node waits to be cut. With
+// keep_cavities only the outer surface is measured (a cavity never retracts to the hull).
+struct Measured
+{
+	std::vector<std::vector<int>> cavities;   // faces of each cavity of the node's mesh
+	TriMesh                       outer;      // keep_cavities with cavities: the measured surface
+	Topology                      topo;
+	ConvexHull                    hull;
+	ConcavityReport               rep;
+	Measured(const TriMesh& m, bool keep_cavities, double tau)
+	    : cavities(cavity_faces(m)),
+	      outer(keep_cavities && !cavities.empty() ? outer_surface(m, cavities) : TriMesh()),
+	      topo(surface(m)), hull(surface(m).V), rep(measure_concavity(surface(m), topo, hull, tau))
+	{
+	}
+	// What topo, hull and rep describe: the node's mesh `m` itself, or its outer surface. (The node's
+	// mesh is passed in, not kept: nodes move when the tree grows.)
+	const TriMesh& surface(const TriMesh& m) const { return outer.F.empty() ? m : outer; }
+};
+
+} // namespace
+
+std::vector<int> Decomposition::leaves() const
+{
+	std::vector<int> l;
+	for (int i = 0; i < (int) nodes.size(); ++i)
+		if (nodes[i].leaf()) l.push_back(i);
+	std::sort(l.begin(), l.end(), [&](int a, int b) { return nodes[a].path < nodes[b].path; });
+	return l;
+}
+
+std::vector<int> Decomposition::parts() const
+{
+	std::vector<int> p;
+	for (int i = 0; i < (int) nodes.size(); ++i)
+		if ((nodes[i].leaf() && nodes[i].part < 0) || !nodes[i].merged.empty()) p.push_back(i);
+	std::sort(p.begin(), p.end(), [&](int a, int b) { return nodes[a].path < nodes[b].path; });
+	return p;
+}
+
+double Decomposition::max_part_concavity() const
+{
+	double c = 0;
+	for (int i : parts()) c = std::max(c, nodes[i].concavity);
+	return c;
+}
+
+double Decomposition::max_hull_distance() const
+{
+	double c = 0;
+	for (int i : parts()) c = std::max(c, nodes[i].hull_distance);
+	return c;
+}
+
+bool Decomposition::certified(int id) const
+{
+	return acd::certified(nodes[id], tau);
+}
+
+bool Decomposition::tau_convex() const
+{
+	for (int i : parts())
+		if (!certified(i)) return false;
+	return kept_cavities == 0 && !max_parts_reached && !time_limit_reached;
+}
+
+namespace {
+
+// A candidate plane split and scored.
+struct Trial
+{
+	SplitOutcome so;
+	// Its parts' measures (the paper's measure itself, the one the recursion uses): the picked
+	// plane's become its children's, not measured again.
+	std::shared_ptr<const Measured> measures[2];
+	bool         ok = false;
+	bool         crosses = false;   // keep_cavities: the plane cuts through a kept cavity
+	double       score = 0, sum = 0;
+	int          sliver = -1;       // the side a rejected plane shaved off
+	double       smaller = 0;       // the smaller side's share of the volume
+};
+
+// One node's cut: its target (the most concave notch, or a cavity), the candidate planes, their trials.
+struct Cut
+{
+	int                id   = -1;
+	int                hole = -1;   // the cavity cut, or -1 for the notch
+	Vec3               notch = Vec3::Zero();
+	std::vector<Plane> planes;
+	std::vector<Trial> trials;
+	bool               first_fit  = false;   // try planes in order, keep the first that splits
+	bool               by_section = false;   // score by the cut's cross-section (MinSection)
+	bool               complete   = false;   // the planes are already all the notch offers
+	bool               widen      = false;   // none splits: score all the notch offers before halving
+	bool               stalled = false;      // the node's own cut made no progress: this one must
+	int                pick = -1;
+};
+
+// Approx_CD for a solid, as named stages; the recursion's queue and limits are shared with 2D.
+class Driver : public Driving<Driver, Decomposition, DecomposeOptions>
+{
+public:
+	explicit Driver(const DecomposeOptions& opt) : Driving(opt, opt.hole_handling == HoleHandling::KeepCavities, kMaxDepth) {}
+
+	Decomposition run(const Solid& solid)
+	{
+		const std::vector<int> roots = root_nodes(solid);
+		for (int id : roots) measure_node(id);
+		return finish(roots, &Decomposition::kept_cavities);
+	}
+
+	// One node: its target, candidate planes, their trials, the pick; the parts added.
+	int cut(int id)
+	{
+		Cut c;
+		c.id = id;
+		choose_target(c);
+		candidate_planes_for(c);
+		unstall(c);
+		try_planes(c);
+		pick_plane(c);
+		widen(c);
+		refine_neck(c);
+		if (c.pick < 0 && halved_before(id) && drop_film(c)) return 0;
+		if (c.pick < 0 && halve(c)) halved.insert(id);
+		if (c.pick < 0 && drop_film(c)) return 0;
+		return accept(c);
+	}
+
+	void forget(int id) { measured[id].reset(); }
+
+private:
+	std::vector<std::shared_ptr<const Measured>> measured;   // kept while a node waits to be cut
+	std::unordered_map<int, int>           films;      // per node: films dropped (bounded)
+	std::unordered_set<int>                halved;     // nodes cut by halve()
+
+	int add_node(TriMesh mesh, int parent, const std::string& path)
+	{
+		Node n;
+		n.parent = parent;
+		n.path   = path;
+		n.mesh   = std::move(mesh);
+		D.nodes.push_back(std::move(n));
+		measured.emplace_back();
+		return (int) D.nodes.size() - 1;
+	}
+
+	// `ms`: the node's mesh already measured (as a scored trial's part), else measured here.
+	void measure_node(int id, std::shared_ptr<const Measured> ms = nullptr)
+	{
+		Node& n = D.nodes[id];
+		if (!ms) ms = std::make_shared<const Measured>(n.mesh, keep, opt.tau);
+		n.concavity           = ms->rep.max_concavity;
+		n.hull_distance       = ms->rep.hull_reach;
+		n.hull_distance_bound = ms->rep.hull_reach_bound;
+		n.volume              = signed_volume(n.mesh);
+		n.notch_count         = ms->rep.notches;
+		n.cavities            = (int) ms->cavities.size();
+		if (ms->rep.max_vertex >= 0) n.notch = ms->surface(n.mesh).V[ms->rep.max_vertex];
+		if (rec.needs_cut(n)) measured[id] = std::move(ms);
+	}
+
+	// Several solids (disjoint shells): no notch lies between them, so the measure would call the
+	// union convex. Split them off first, one per level (A | rest), keeping the tree binary. The
+	// nodes left to cut.
+	std::vector<int> root_nodes(const Solid& solid)
+	{
+		std::vector<TriMesh> solids;
+		if (solid.shells > 1) solids = connected_solids(solid.mesh);
+		if (solids.size() < 2) return {add_node(solid.mesh, -1, "0")};
+		std::vector<int> out;
+		int              node = add_node(solid.mesh, -1, "0");
+		for (size_t k = 0; k + 1 < solids.size(); ++k) {
+			Node& n  = D.nodes[node];
+			n.volume = signed_volume(n.mesh);
+			n.solids = true;
+			const std::string path = n.path;
+			TriMesh           rest;
+			for (size_t j = k + 1; j < solids.size(); ++j) append(rest, solids[j]);
+			const int a = add_node(std::move(solids[k]), node, path + '0');
+			const int b = add_node(k + 2 < solids.size() ? std::move(rest) : std::move(solids[k + 1]), node, path + '1');
+			D.nodes[node].child[0] = a;
+			D.nodes[node].child[1] = b;
+			out.push_back(a);
+			if (k + 2 == solids.size()) out.push_back(b);
+			node = b;
+		}
+		return out;
+	}
+
+	// A cavity is cut when holes go first, when the most concave notch lies on one, or when only
+	// cavities are left; the deepest cavity (or the notch's) is the one cut.
+	void choose_target(Cut& c) const
+	{
+		const TriMesh&  mesh = D.nodes[c.id].mesh;
+		const Measured& ms   = *measured[c.id];
+		if (keep || ms.cavities.empty()) return;
+		int    deepest         = -1;
+		bool   notch_on_cavity = false;
+		double depth           = -1;
+		for (int k = 0; k < (int) ms.cavities.size(); ++k)
+			for (int f : ms.cavities[k])
+				for (int v : mesh.F[f]) {
+					notch_on_cavity |= v == ms.rep.max_vertex;
+					if (ms.rep.vertex_concavity[v] > depth) depth = ms.rep.vertex_concavity[v], deepest = k;
+				}
+		if (opt.hole_order == HoleOrder::First || notch_on_cavity || D.nodes[c.id].concavity <= opt.tau) c.hole = deepest;
+	}
+
+	// Every plane the notch offers (Best's), bisector first.
+	std::vector<Plane> all_planes(int id) const
+	{
+		const Measured& ms = *measured[id];
+		return all_notch_planes(ms.surface(D.nodes[id].mesh), ms.topo, ms.hull, ms.rep, opt.candidate_planes);
+	}
+
+	void candidate_planes_for(Cut& c) const
+	{
+		const TriMesh&  mesh = D.nodes[c.id].mesh;
+		const Measured& ms   = *measured[c.id];
+		if (c.hole < 0) {
+			c.notch = ms.surface(mesh).V[ms.rep.max_vertex];
+			CutPlan plan = plan_notch_cut(ms.surface(mesh), ms.topo, ms.hull, ms.rep, opt.cut_plane_selection, opt.candidate_planes);
+			c.planes     = std::move(plan.planes);
+			c.first_fit  = plan.policy == CutPolicy::FirstFit;
+			c.by_section = plan.policy == CutPolicy::BySection;
+			c.complete   = plan.complete;
+			c.widen      = plan.widen;
+		}
+		else {
+			c.planes = cavity_planes(mesh, ms.cavities[c.hole], ms.hull, opt.hole_handling, opt.candidate_planes, c.notch);
+			// The paper's plane first, others only if it cannot split; or all of them scored.
+			c.first_fit = opt.hole_handling != HoleHandling::BestPlane;
+		}
+		c.trials.assign(c.planes.size(), Trial());
+	}
+
+	// Whether a plane cuts through a cavity (its faces on both sides).
+	static bool crosses(const TriMesh& mesh, const std::vector<int>& cavity, const Plane& pl)
+	{
+		bool neg = false, pos = false;
+		for (int f : cavity)
+			for (int v : mesh.F[f]) (pl.eval(mesh.V[v]) > 0 ? pos : neg) = true;
+		return neg && pos;
+	}
+
+	// A plane that takes a chip (volume va or vb, concavity a or b) itself over tau and leaves the rest
+	// as concave as the node resolves nothing: two nodes to cut for one, and picked, it would be
+	// picked again on the rest, chip after chip.
+	bool chips(int id, double va, double vb, double a, double b) const
+	{
+		const bool   first = va < vb;
+		const double chip = first ? a : b, rest = first ? b : a;
+		return std::min(va, vb) < 1e-3 * D.nodes[id].volume && chip > opt.tau && rest >= 0.99 * D.nodes[id].concavity;
+	}
+
+	// The trial's two parts measured (false: one of them is beyond `beat`, the other left unmeasured).
+	// `both_cores` measures the two at once; otherwise the larger part goes first, as the deep notch
+	// is more often there.
+	bool measure_parts(Trial& t, double va, double vb, double beat, bool both_cores) const
+	{
+		const auto measure = [&](int s) { t.measures[s] = std::make_shared<const Measured>(t.so.parts[s], keep, opt.tau); };
+		if (both_cores) {
+			parallel_for(2, [&](size_t s) { measure((int) s); });
+			return true;
+		}
+		const int larger = va < vb ? 1 : 0;
+		measure(larger);
+		if (!(t.measures[larger]->rep.max_concavity < beat)) return false;
+		measure(1 - larger);
+		return true;
+	}
+
+	// Split the node by candidate i and, with `score`, measure the parts. Trials are independent
+	// (each writes its own slot), so they run on all cores. A plane that cannot be picked unless it
+	// scores below `beat` stops, not ok, as soon as one part reaches it.
+	void trial(Cut& c, size_t i, bool score, double beat = INFINITY, bool both_cores = false) const
+	{
+		const TriMesh&  mesh = D.nodes[c.id].mesh;
+		const Measured& ms   = *measured[c.id];
+		const double    v0   = D.nodes[c.id].volume;
+		Trial&          t    = c.trials[i];
+		t                    = Trial();
+		if (!separate(mesh, c.planes[i], c.notch, t.so)) return;
+		// A plane that grazes the part shaves off a sliver and resolves nothing.
+		const double va = signed_volume(t.so.parts[0]), vb = signed_volume(t.so.parts[1]);
+		t.smaller       = std::min(va, vb) / v0;
+		if (va < 1e-5 * v0 || vb < 1e-5 * v0) {
+			t.sliver = va < vb ? 0 : 1;
+			return;
+		}
+		if (keep)
+			for (const auto& cav : ms.cavities) t.crosses |= crosses(mesh, cav, c.planes[i]);
+		if (!score) {
+			t.ok = true;
+			return;
+		}
+		if (c.by_section) {
+			t.score = t.so.cap_area;
+			t.ok    = true;
+			return;
+		}
+		try {
+			if (!measure_parts(t, va, vb, beat, both_cores)) return;
+			const double a = t.measures[0]->rep.max_concavity, b = t.measures[1]->rep.max_concavity;
+			if (chips(c.id, va, vb, a, b)) {
+				t.sliver = va < vb ? 0 : 1;
+				return;
+			}
+			t.score = std::max(a, b);
+			t.sum   = a + b;
+			t.ok    = true;
+		}
+		catch (const Error&) {   // a part with no volume
+		}
+	}
+
+	// A cut that takes a small piece off and leaves the same notch as deep (a notch on a thin shell,
+	// where the bisector runs along the surface) resolves nothing, and the rest would be cut the same
+	// way, piece after piece, down to the depth bound. A node made by such a cut must progress: its
+	// candidates, the principal planes through its centroid among them, are all scored, and only
+	// those that take a real piece off or leave it clearly less concave may be picked.
+	bool stalled(int id) const
+	{
+		const Node& n = D.nodes[id];
+		if (n.parent < 0 || D.nodes[n.parent].solids) return false;
+		const Node& p = D.nodes[n.parent];
+		return n.volume >= 0.99 * p.volume && n.concavity >= 0.99 * p.concavity && (n.notch - p.notch).norm() <= opt.tau;
+	}
+
+	bool progresses(const Cut& c, const Trial& t) const
+	{
+		return t.smaller >= 0.01 || t.score < 0.99 * D.nodes[c.id].concavity;
+	}
+
+	void unstall(Cut& c) const
+	{
+		if (c.hole >= 0 || !stalled(c.id)) return;
+		const TriMesh&  mesh = D.nodes[c.id].mesh;
+		const Measured& ms   = *measured[c.id];
+		c.stalled            = true;
+		c.first_fit = c.by_section = false;
+		if (!c.complete) {
+			const auto more = all_planes(c.id);
+			c.planes.insert(c.planes.end(), more.begin(), more.end());
+		}
+		const Vec3 centre = surface_moments(mesh, Vec3::Zero()).centroid;
+		for (int k = 0; k < 3; ++k) c.planes.push_back(through(centre, ms.rep.frame.axes.row(k).transpose()));
+		c.trials.assign(c.planes.size(), Trial());
+	}
+
+	// A notch charged with its bridge's reach (no vertex shows that depth) has a dihedral angle that
+	// need not point across the reach: its plane stands unless it only shaves a tau-convex sliver
+	// off and leaves the rest about as concave.
+	void try_planes(Cut& c) const
+	{
+		const bool reach = c.hole < 0 && measured[c.id]->rep.reach_cut;
+		if (c.first_fit) {
+			// The paper's plane first; the others only if it cannot split.
+			int fit = -1;
+			for (size_t i = 0; i < c.planes.size() && fit < 0; ++i) {
+				trial(c, i, reach);
+				if (c.trials[i].ok && !c.trials[i].crosses) fit = (int) i;
+			}
+			const auto shaves = [&](const Trial& t) {
+				return t.sum - t.score <= opt.tau && t.score >= 0.9 * D.nodes[c.id].concavity;
+			};
+			if (reach && (fit < 0 || shaves(c.trials[fit]))) c.first_fit = false;
+		}
+		if (c.first_fit) return;
+		if (!bisector_stands(c)) {
+			parallel_for(c.planes.size(), [&](size_t i) { trial(c, i, true); });
+			return;
+		}
+		// The bisector first: the others need only be scored far enough to see whether they beat it.
+		trial(c, 0, true, INFINITY, true);
+		const Trial& t0   = c.trials[0];
+		const double beat = t0.ok && !t0.crosses ? kClearlyLess * t0.score : INFINITY;
+		parallel_for(c.planes.size() - 1, [&](size_t i) { trial(c, i + 1, true, beat); });
+	}
+
+	// Whether pick_plane keeps candidate 0, the bisector, unless another scores clearly less.
+	static bool bisector_stands(const Cut& c) { return c.hole < 0 && !c.by_section && !c.stalled && c.planes.size() > 1; }
+
+	// The paper's bisector plane (candidate 0) stands unless another leaves clearly (10%) less
+	// concavity: greedy scores alone would rather shave small arms off one by one. Among the
+	// others, scores within a hair (planes are nudged ~1e-7 of the size off vertices) are ties,
+	// settled by the total concavity.
+	void pick_plane(Cut& c) const
+	{
+		const double hair = 1e-6 * extent(D.nodes[c.id].mesh.V);
+		const auto&  T    = c.trials;
+		int          pick = -1;
+		for (const bool allow_crossing : {false, true}) {   // planes that spare kept cavities first
+			for (int i = 0; i < (int) T.size(); ++i) {
+				const Trial& t = T[i];
+				if (!t.ok || (t.crosses && !allow_crossing) || (c.stalled && !progresses(c, t))) continue;
+				if (pick < 0 || t.score < T[pick].score - hair || (t.score <= T[pick].score + hair && t.sum < T[pick].sum - hair))
+					pick = i;
+			}
+			if (pick >= 0) break;
+		}
+		// For a notch (not a cavity, whose planes are all scored alike): see above.
+		if (c.hole < 0 && !c.by_section && pick > 0 && T[0].ok && !T[0].crosses && !(c.stalled && !progresses(c, T[0])) &&
+		    !(T[pick].score < kClearlyLess * T[0].score))
+			pick = 0;
+		c.pick = pick;
+	}
+
+	// At a sharp edge no plane of the edge splits (each shaves a sliver off): the notch's other
+	// planes are scored, as the bisector falls back to them, before the part is halved.
+	void widen(Cut& c) const
+	{
+		if (c.pick >= 0 || c.hole >= 0 || c.stalled || !c.widen) return;
+		const auto   more = all_planes(c.id);
+		const size_t from = c.planes.size();
+		c.planes.insert(c.planes.end(), more.begin() + std::min<size_t>(1, more.size()), more.end());
+		c.trials.resize(c.planes.size());
+		parallel_for(c.planes.size() - from, [&](size_t i) { trial(c, from + i, true); });
+		pick_plane(c);
+	}
+
+	// The fan samples the section's area every pi/K: the parabola through the smallest and its
+	// neighbours puts the neck between samples, so the plane turns smoothly as the shape does.
+	void refine_neck(Cut& c) const
+	{
+		if (!c.by_section || c.pick < 0 || measured[c.id]->rep.max_bridge < 0) return;
+		const int    K = (int) c.planes.size();
+		const Trial &l = c.trials[(c.pick + K - 1) % K], &r = c.trials[(c.pick + 1) % K];
+		const double curv = l.score - 2 * c.trials[c.pick].score + r.score;
+		if (K < 3 || !l.ok || !r.ok || !(curv > 0)) return;
+		const double phi  = 0.5 * (l.score - r.score) / curv * M_PI / K;
+		const Vec3   axis = c.planes[0].n.cross(c.planes[1].n).normalized(), n = c.planes[c.pick].n;   // the fan's
+		c.planes.push_back(through(c.notch, std::cos(phi) * n + std::sin(phi) * axis.cross(n)));
+		c.trials.emplace_back();
+		trial(c, c.planes.size() - 1, true);
+		if (c.trials.back().ok && !c.trials.back().crosses && c.trials.back().score < c.trials[c.pick].score)
+			c.pick = (int) c.planes.size() - 1;
+	}
+
+	// No candidate splits (the notch sits where every plane through it shaves a sliver): halve the
+	// part across its principal axes instead, so that it still shrinks towards tau. A curved strip
+	// crossed in its middle falls in three pieces: then cut nearer an end along the same axes. True
+	// if it did.
+	bool halve(Cut& c) const
+	{
+		const TriMesh& mesh   = D.nodes[c.id].mesh;
+		const Vec3     centre = surface_moments(mesh, Vec3::Zero()).centroid;
+		for (const double frac : {0.5, 0.3, 0.7, 0.15, 0.85})
+			for (int k = 0; k < 3 && c.pick < 0; ++k) {
+				const Vec3 axis = measured[c.id]->rep.frame.axes.row(k).transpose();
+				double     lo = INFINITY, hi = -INFINITY;
+				for (const Vec3& v : mesh.V) lo = std::min(lo, axis.dot(v - centre)), hi = std::max(hi, axis.dot(v - centre));
+				const double at = frac == 0.5 ? 0.0 : lo + frac * (hi - lo);
+				c.planes.push_back(through(centre + at * axis, axis));
+				c.trials.emplace_back();
+				trial(c, c.planes.size() - 1, false);
+				if (c.trials.back().ok) c.pick = (int) c.planes.size() - 1;
+			}
+		return c.pick >= 0;
+	}
+
+	// A half of a halved part that no plane splits either: a film is the likelier cause, which
+	// halving would keep in one half, to be halved again, so it is dropped first.
+	bool halved_before(int id) const { return D.nodes[id].parent >= 0 && halved.count(D.nodes[id].parent) > 0; }
+
+	// Still none: the part may carry a film, two sheets of its surface a rounding error apart (a cut
+	// plane a hair off a flat face leaves one). It holds no volume, yet its hull may reach far: drop
+	// the widest film a plane shaves off, and measure the rest again. True if one was dropped.
+	bool drop_film(Cut& c)
+	{
+		if (films[c.id] >= kMaxFilms) return false;
+		int          drop   = -1;
+		double       widest = 0;
+		const double size   = extent(D.nodes[c.id].mesh.V);
+		for (int i = 0; i < (int) c.trials.size(); ++i) {
+			if (c.trials[i].sliver < 0) continue;
+			const TriMesh& f = c.trials[i].so.parts[c.trials[i].sliver];
+			const double   a = surface_area(f);
+			if (std::abs(signed_volume(f)) <= 0.5e-6 * size * a && a > widest) widest = a, drop = i;
+		}
+		if (drop < 0) return false;
+		Trial& t = c.trials[drop];
+		++films[c.id];
+		++D.films_dropped;
+		D.film_volume += std::abs(signed_volume(t.so.parts[t.sliver]));
+		D.nodes[c.id].mesh = std::move(t.so.parts[1 - t.sliver]);
+		measured[c.id].reset();
+		measure_node(c.id);
+		rec.push(c.id);
+		return true;
+	}
+
+	// The picked plane makes the node's two children (measured on two cores, then queued); no plane
+	// leaves the node a leaf, reported uncut.
+	int accept(Cut& c)
+	{
+		const int id = c.id;
+		measured[id].reset();
+		if (c.pick < 0) {
+			D.nodes[id].uncut = true;
+			return 0;
+		}
+		SplitOutcome best     = std::move(c.trials[c.pick].so);
+		D.nodes[id].has_plane = true;
+		D.nodes[id].plane     = best.plane;
+		D.nodes[id].hole_cut  = c.hole >= 0;
+		D.hole_cuts += c.hole >= 0;
+		const std::string path = D.nodes[id].path;
+		for (int s = 0; s < 2; ++s) {
+			const int child      = add_node(std::move(best.parts[s]), id, path + char('0' + s));
+			D.nodes[id].child[s] = child;   // after add_node: it may move D.nodes
+		}
+		parallel_for(2, [&](size_t s) { measure_node(D.nodes[id].child[s], c.trials[c.pick].measures[s]); });
+		for (int s = 0; s < 2; ++s) rec.push(D.nodes[id].child[s]);
+		return 1;
+	}
+
+	static constexpr double kClearlyLess = 0.9;   // another plane's score must be below this times the bisector's
+	static constexpr size_t kMaxDepth = 96;   // tree depth (path length) past which a node stays uncut
+	static constexpr int    kMaxFilms = 8;    // films dropped per node, so a node cannot loop
+};
+
+} // namespace
+
+Decomposition decompose(const Solid& solid, const DecomposeOptions& opt)
+{
+	if (!(opt.tau > 0) || !std::isfinite(opt.tau))
+		throw Error(Error::InvalidOption, "tau must be a positive, finite length.");
+	if (opt.max_parts < 0) throw Error(Error::InvalidOption, "max_parts must be 0 (unbounded) or positive.");
+	const auto start = std::chrono::steady_clock::now();
+
+	// Work centred and at unit size: a mesh far from the origin (CAD, map coordinates) would
+	// otherwise carry rounding errors hundreds of times larger than the same mesh at the origin,
+	// and rounding decides near-ties. The tree is mapped back to model coordinates at the end.
+	Vec3 c = Vec3::Zero();
+	for (const Vec3& p : solid.mesh.V) c += p;
+	c /= (double) solid.mesh.V.size();
+	const double s = extent(solid.mesh.V);
+	Solid        unit = solid;
+	for (Vec3& p : unit.mesh.V) p = (p - c) / s;
+	unit.volume /= s * s * s;
+	DecomposeOptions o = opt;
+	o.tau /= s;
+	Decomposition D = Driver(o).run(unit);
+	if (o.merge_parts) {
+		// The time limit bounds the cuts and the merge together; the merge gets what the cuts left.
+		const double spent = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+		const double left  = o.time_limit_seconds > 0 ? std::max(o.time_limit_seconds - spent, 1e-9) : 0;
+		merge_parts(D, o.tau, o.progress, left);
+	}
+	D.tau = opt.tau;
+	for (Node& n : D.nodes) {
+		for (Vec3& p : n.mesh.V) p = p * s + c;
+		n.concavity *= s;
+		n.hull_distance *= s;
+		n.hull_distance_bound *= s;
+		n.volume *= s * s * s;
+		n.notch = n.notch * s + c;
+		n.plane.d = n.plane.d * s + n.plane.n.dot(c);
+	}
+	return D;
+}
+
+} // namespace acd

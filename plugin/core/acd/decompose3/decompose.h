@@ -1,0 +1,87 @@
+// Approx_CD (the paper's Algorithm 4.1): cut the most concave notch until every part's concavity is
+// at most tau. The result is the binary tree of cuts; its leaves are the parts.
+#pragma once
+
+#include "acd/decompose3/concavity.h"
+#include "acd/decompose3/cut_planes.h"
+#include "acd/solid/separate.h"
+#include "acd/solid/solid.h"
+#include "acd/recursion/hole_order.h"
+
+#include <functional>
+#include <string>
+
+namespace acd {
+
+struct DecomposeOptions
+{
+	double            tau = 0;   // model units; > 0
+	CutPlaneSelection cut_plane_selection = CutPlaneSelection::BisectorOrFace;
+	int               max_parts = 0;          // 0 = unbounded
+	int               candidate_planes = 6;   // planes around the retraction direction (Best)
+	HoleHandling      hole_handling = HoleHandling::BestPlane;
+	HoleOrder         hole_order = HoleOrder::First;
+	double            time_limit_seconds = 0; // 0 = none; bounds the cuts and the merge after them
+	bool              merge_parts = true;     // merge neighbouring parts while their union is tau-convex (merge.h)
+	// Called with a percentage and a short status; return false to cancel (throws Error(Cancelled)).
+	std::function<bool(int, const char*)> progress;
+};
+
+struct Node
+{
+	int         parent = -1;
+	int         child[2] = {-1, -1};
+	std::string path;              // "0" for the root, parent's path + '0'/'1' for children
+	double      concavity = 0;     // of this node's solid: the paper's measure, at least the hull's reach
+	double      hull_distance = 0; // how far the node's hull reaches beyond it (attained; see hull_reach.h)
+	double      hull_distance_bound = 0;   // and no farther than this
+	double      volume = 0;
+	int         notch_count = 0;   // reflex edges
+	Vec3        notch = Vec3::Zero();   // most concave notch (meaningful if concavity > 0)
+	bool        has_plane = false;      // internal node: the cut
+	Plane       plane;
+	bool        uncut = false;     // leaf above tau because no plane split it (reported)
+	bool        solids = false;    // split into its disjoint solids (first one | the rest), not by a plane
+	int         cavities = 0;      // closed inner shells in this node's solid
+	bool        hole_cut = false;  // the cut went through a cavity (hole_handling's plane)
+	TriMesh     mesh;              // the node's solid
+	std::vector<int> merged;       // a merged part (not in the cut tree): the leaves it unites, in path order
+	int         part = -1;         // a leaf united into a merged part: that part's node
+	bool        leaf() const { return child[0] < 0 && merged.empty(); }
+};
+
+struct Decomposition
+{
+	std::vector<Node> nodes;        // nodes[0] is the root
+	double            tau = 0;
+	bool              max_parts_reached = false;
+	bool              time_limit_reached = false;
+	int               hole_cuts = 0;       // cuts made to resolve cavities
+	int               kept_cavities = 0;   // cavities left in the parts (keep_cavities)
+	int               films_dropped = 0;   // zero-thickness films cut off parts no plane could split
+	double            film_volume = 0;     // the volume they held (rounding: near 0)
+	int               merges = 0;          // neighbouring parts merged after the cuts
+	bool              merge_time_limit_reached = false;   // merging stopped by the time limit (parts still certified)
+	// The cut tree's leaves in a stable order (by tree path).
+	std::vector<int> leaves() const;
+	// The parts: the leaves not merged and the merged parts, by their (first leaf's) path.
+	std::vector<int> parts() const;
+	double           max_part_concavity() const;
+	double           max_hull_distance() const;   // over the parts
+	bool             certified(int id) const;   // acd::certified(nodes[id], tau)
+	// The certificate: every part certified, no cavity kept, no limit reached.
+	bool             tau_convex() const;
+};
+
+// How far a certified hull may reach: tau and the 1% of tau the reach is refined to; the rest is rounding.
+inline double reach_bar(double tau) { return 1.01 * tau * (1 + 1e-9); }
+
+// A part within tau by both measures (its hull within reach_bar) and not left uncut.
+inline bool certified(const Node& n, double tau)
+{
+	return !n.uncut && n.concavity <= tau && n.hull_distance_bound <= reach_bar(tau);
+}
+
+Decomposition decompose(const Solid& solid, const DecomposeOptions& options);
+
+} // namespace acd

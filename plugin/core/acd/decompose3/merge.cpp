@@ -1,0 +1,430 @@
+// The merge stage (merge.h): neighbours from the cuts' caps, each neighbouring pair's union scored by
+// the cuts' own certificate, the least concave union merged first.
+#include "acd/decompose3/merge.h"
+#include "acd/solid/glue.h"
+#include "acd/hull/hull_reach.h"
+#include "acd/mesh/parallel.h"
+#include "acd/mesh/measures.h"
+#include "acd/solid/solid.h"
+
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/convex_hull_3.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <map>
+#include <optional>
+#include <queue>
+#include <set>
+#include <thread>
+
+namespace acd {
+
+namespace {
+
+using Tri2 = std::array<Eigen::Vector2d, 3>;
+
+// The vertices of the points' convex hull (far fewer than a part's, so the hull of two parts' unions
+// is quick to build from them).
+std::vector<Vec3> extreme_points(const std::vector<Vec3>& pts)
+{
+	using K = CGAL::Exact_predicates_inexact_constructions_kernel;
+	std::vector<K::Point_3> in, out;
+	for (const Vec3& p : pts) in.emplace_back(p.x(), p.y(), p.z());
+	CGAL::extreme_points_3(in, std::back_inserter(out));
+	std::vector<Vec3> e;
+	for (const K::Point_3& p : out) e.emplace_back(p.x(), p.y(), p.z());
+	std::sort(e.begin(), e.end(), [](const Vec3& a, const Vec3& b) { return std::lexicographical_compare(a.data(), a.data() + 3, b.data(), b.data() + 3); });
+	return e;
+}
+
+// The faces of `m` lying on plane `pl` (within eps), in the plane's frame (u, w).
+std::vector<Tri2> cap_on(const TriMesh& m, const Plane& pl, const Vec3& u, const Vec3& w, double eps)
+{
+	std::vector<Tri2> out;
+	for (const Tri& t : m.F) {
+		if (!pl.holds(m.V, t, eps)) continue;
+		Tri2 q;
+		for (int k = 0; k < 3; ++k) q[k] = {u.dot(m.V[t[k]]), w.dot(m.V[t[k]])};
+		out.push_back(q);
+	}
+	return out;
+}
+
+// Two triangles of one plane share area: no edge direction of either separates them by less than
+// `margin` of overlap (triangles meeting at an edge or a corner do not).
+bool overlap(const Tri2& a, const Tri2& b, double margin)
+{
+	for (const Tri2* t : {&a, &b})
+		for (int k = 0; k < 3; ++k) {
+			const Eigen::Vector2d e = (*t)[(k + 1) % 3] - (*t)[k];
+			const Eigen::Vector2d n = Eigen::Vector2d(-e.y(), e.x());
+			if (!(n.norm() > 0)) return false;
+			double lo[2] = {INFINITY, INFINITY}, hi[2] = {-INFINITY, -INFINITY};
+			for (int s = 0; s < 2; ++s)
+				for (const Eigen::Vector2d& p : s ? b : a) {
+					const double x = n.dot(p) / n.norm();
+					lo[s] = std::min(lo[s], x), hi[s] = std::max(hi[s], x);
+				}
+			if (std::min(hi[0], hi[1]) - std::max(lo[0], lo[1]) <= margin) return false;
+		}
+	return true;
+}
+
+bool caps_overlap(const std::vector<Tri2>& a, const std::vector<Tri2>& b, double margin)
+{
+	for (const Tri2& s : a)
+		for (const Tri2& t : b)
+			if (overlap(s, t, margin)) return true;
+	return false;
+}
+
+std::vector<int> leaves_below(const Decomposition& D, int id)
+{
+	std::vector<int> out, stack{id};
+	while (!stack.empty()) {
+		const Node& n = D.nodes[stack.back()];
+		const int   k = stack.back();
+		stack.pop_back();
+		if (n.leaf()) out.push_back(k);
+		else stack.insert(stack.end(), {n.child[1], n.child[0]});
+	}
+	return out;
+}
+
+// A part while merging: the leaves it unites, its solid and its measures.
+struct Group
+{
+	std::vector<int>  leaves;    // node ids, path order
+	Node              part;      // its solid and measures, as the merged part's node will hold them
+	std::vector<Vec3> extreme;   // the vertices of its hull
+	long              crossings = -1;  // faces crossing away from the cuts between its leaves (-1: not counted)
+	bool              alive = true;
+};
+
+struct Candidate
+{
+	int   a = -1, b = -1;   // groups
+	Group u;                 // their union
+};
+
+class Merger
+{
+public:
+	Merger(Decomposition& D, double tau, const std::function<bool(int, const char*)>& progress, double seconds)
+	    : D(D), tau(tau), eps(1e-9 * extent(D.nodes[0].mesh.V)), progress(progress), seconds(seconds),
+	      start(std::chrono::steady_clock::now()), heap(Later{this})
+	{
+	}
+
+	int run()
+	{
+		start_groups();
+		start_neighbours();
+		std::vector<std::pair<int, int>> pairs;
+		for (int a = 0; a < (int) groups.size(); ++a)
+			for (int b : nbr[a])
+				if (a < b) pairs.push_back({a, b});
+		score(pairs);
+		greedy();
+		record();
+		return merges;
+	}
+
+private:
+	Decomposition&                                  D;
+	const double                                    tau, eps;
+	const std::function<bool(int, const char*)>&    progress;
+	const double                                    seconds;   // 0: no time limit
+	const std::chrono::steady_clock::time_point     start;
+	std::vector<Group>                              groups;
+	std::vector<std::set<int>>                      nbr;
+	std::map<std::pair<int, int>, int>              contact;   // neighbouring leaves -> the cut between them
+	std::map<std::string, int>                      by_path;
+	std::vector<Candidate>                          pool;
+	int                                             merges = 0;
+	static constexpr int kPrefilterEvaluations = 2000;   // distance queries per pair before its union is built
+
+	// The least concave union first. Concavities within rounding of each other (a symmetric solid's
+	// congruent unions) tie, and ties go by the groups' first leaves' paths: a pose-free order.
+	struct Later
+	{
+		const Merger* m;
+		bool          operator()(int i, int j) const
+		{
+			const Candidate &x = m->pool[i], &y = m->pool[j];
+			const long long  cx = std::llround(x.u.part.concavity / m->eps), cy = std::llround(y.u.part.concavity / m->eps);
+			if (cx != cy) return cx > cy;
+			return m->key(x) > m->key(y);
+		}
+	};
+	std::priority_queue<int, std::vector<int>, Later> heap;
+
+	std::pair<std::string, std::string> key(const Candidate& c) const
+	{
+		return {D.nodes[groups[c.a].leaves[0]].path, D.nodes[groups[c.b].leaves[0]].path};
+	}
+
+	void start_groups()
+	{
+		for (int k = 0; k < (int) D.nodes.size(); ++k) by_path[D.nodes[k].path] = k;
+		for (int l : D.leaves()) {
+			const Node& n = D.nodes[l];
+			Group       g;
+			g.leaves = {l};
+			g.part   = n;
+			// Only certified parts merge: an uncut leaf or one holding a kept cavity stays as it is.
+			g.alive = n.cavities == 0 && certified(n, tau);
+			groups.push_back(std::move(g));
+		}
+		parallel_for(groups.size(), [&](size_t i) {
+			if (groups[i].alive) groups[i].extreme = extreme_points(groups[i].part.mesh.V);
+		});
+	}
+
+	double bar() const { return reach_bar(tau); }   // the cuts' certificate's
+
+	void start_neighbours()
+	{
+		nbr.assign(groups.size(), {});
+		std::vector<int> index(D.nodes.size(), -1);
+		for (int g = 0; g < (int) groups.size(); ++g) index[groups[g].leaves[0]] = g;
+		for (const LeafContact& c : neighbouring_leaves(D)) {
+			contact[{c.a, c.b}] = c.cut;
+			const int ga = index[c.a], gb = index[c.b];
+			if (!groups[ga].alive || !groups[gb].alive) continue;
+			nbr[ga].insert(gb);
+			nbr[gb].insert(ga);
+		}
+	}
+
+	// The cuts between the leaves: the nodes with some of them below each child.
+	std::vector<Plane> separating(const std::vector<int>& leaves) const
+	{
+		std::map<std::string, int> sides;
+		for (int l : leaves) {
+			const std::string& p = D.nodes[l].path;
+			for (size_t n = 1; n < p.size(); ++n) sides[p.substr(0, n)] |= p[n] == '0' ? 1 : 2;
+		}
+		std::vector<Plane> planes;
+		for (const auto& [path, both] : sides) {
+			const auto it = by_path.find(path);
+			if (both == 3 && it != by_path.end() && D.nodes[it->second].has_plane) planes.push_back(D.nodes[it->second].plane);
+		}
+		return planes;
+	}
+
+	// Faces of a solid crossing each other, but for those that a cut between its leaves separates:
+	// leaves on either side of a plane only touch there (their rims met a rounding error apart, or
+	// they meet along an edge), which is no fold.
+	long crossings_off_seams(const Solid& s, const std::vector<Plane>& planes) const
+	{
+		if (s.self_intersections == 0) return 0;
+		const auto side = [&](const Tri& t, const Plane& pl) {
+			double lo = INFINITY, hi = -INFINITY;
+			for (int v : t) lo = std::min(lo, pl.eval(s.mesh.V[v])), hi = std::max(hi, pl.eval(s.mesh.V[v]));
+			if (hi <= eps && lo >= -eps) {   // a face in the plane: on its solid's side
+				const Vec3& A = s.mesh.V[t[0]];
+				return pl.n.dot((s.mesh.V[t[1]] - A).cross(s.mesh.V[t[2]] - A)) > 0 ? -1 : 1;
+			}
+			return hi <= eps ? -1 : lo >= -eps ? 1 : 0;
+		};
+		long n = 0;
+		for (const auto& [f, g] : self_crossings(s.mesh, bbox_diagonal(s.mesh.V))) {
+			bool apart = false;
+			for (const Plane& pl : planes) {
+				const int a = side(s.mesh.F[f], pl), b = side(s.mesh.F[g], pl);
+				apart |= a != 0 && b != 0 && a != b;
+			}
+			n += !apart;
+		}
+		return n;
+	}
+
+	// A group's own crossings: a merged group's were counted when it was made, a leaf's only when a
+	// union with it crosses itself (rarely), not for every leaf up front.
+	static long own_crossings(const Group& g)
+	{
+		return g.crossings >= 0 ? g.crossings : (long) self_crossings(g.part.mesh, bbox_diagonal(g.part.mesh.V)).size();
+	}
+
+	// The union of groups a and b if it passes the certificate.
+	std::optional<Group> unite(int a, int b) const
+	{
+		const Group &A = groups[a], &B = groups[b];
+		// Outside both parts the distance to their union is the distance to the nearer part, so the
+		// union's hull reach is measured without the union: most pairs fail here, cheaply. The search
+		// stops at the first point beyond the certificate's bar (no refining: relative 1e9), which the
+		// union would fail whatever its measure finds, or after a bounded effort; the union's own
+		// measure settles the rest.
+		const Node &PA = A.part, &PB = B.part;
+		TriMesh     both = PA.mesh;
+		append(both, PB.mesh);
+		std::vector<Vec3> corners = A.extreme;
+		corners.insert(corners.end(), B.extreme.begin(), B.extreme.end());
+		const ConvexHull h(corners);
+		if (hull_reach(both, h, std::vector<char>(h.facets(), 1), bar(), 0.1 * tau, 1e9, kPrefilterEvaluations).lower > bar())
+			return std::nullopt;
+		// The cuts they touch along, where their faces are glued.
+		std::set<int> cuts;
+		for (int x : A.leaves)
+			for (int y : B.leaves) {
+				const auto it = contact.find({std::min(x, y), std::max(x, y)});
+				if (it != contact.end()) cuts.insert(it->second);
+			}
+		std::vector<Plane> planes;
+		for (int c : cuts) planes.push_back(D.nodes[c].plane);
+		Solid s;
+		try {
+			s = make_solid(glue(PA.mesh, PB.mesh, planes, eps));
+		}
+		catch (const std::exception&) {   // the glued surface is not a clean solid (a seam left open)
+			return std::nullopt;
+		}
+		// No fold of its own: the union crosses itself no more than its parts did (a part cut from a
+		// surface that nearly touches itself may carry such crossings from the cuts).
+		std::vector<int> leaves;
+		std::merge(A.leaves.begin(), A.leaves.end(), B.leaves.begin(), B.leaves.end(), std::back_inserter(leaves),
+		           [&](int x, int y) { return D.nodes[x].path < D.nodes[y].path; });
+		const long crossings = crossings_off_seams(s, separating(leaves));
+		if (s.shells != 1 || s.cavities > 0 || (crossings > 0 && crossings > own_crossings(A) + own_crossings(B)))
+			return std::nullopt;
+		if (std::abs(s.volume - PA.volume - PB.volume) > 1e-6 * (PA.volume + PB.volume)) return std::nullopt;
+		const Topology        topo(s.mesh);
+		const ConvexHull      hull(s.mesh.V);
+		const ConcavityReport rep = measure_concavity(s.mesh, topo, hull, tau);
+		Group                 g;
+		Node&                 n = g.part;
+		n.concavity           = rep.max_concavity;
+		n.hull_distance       = rep.hull_reach;
+		n.hull_distance_bound = rep.hull_reach_bound;
+		n.volume              = s.volume;
+		n.notch_count         = rep.notches;
+		if (rep.max_vertex >= 0) n.notch = s.mesh.V[rep.max_vertex];
+		if (!certified(n, tau)) return std::nullopt;
+		n.mesh      = std::move(s.mesh);
+		g.extreme   = extreme_points(corners);
+		g.crossings = crossings;
+		g.leaves = std::move(leaves);
+		return g;
+	}
+
+	// True once the time limit has passed: merging stops there (what is merged stays merged).
+	bool out_of_time()
+	{
+		if (seconds > 0 && std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() > seconds)
+			D.merge_time_limit_reached = true;
+		return D.merge_time_limit_reached;
+	}
+
+	void report(const char* msg) const
+	{
+		if (progress && !progress(99, msg)) throw Error(Error::Cancelled, "The decomposition was cancelled.");
+	}
+
+	// Unite the pairs (on all cores, a batch at a time so that progress and the time limit are
+	// heard between batches) and queue those that pass.
+	void score(const std::vector<std::pair<int, int>>& pairs)
+	{
+		const size_t batch = 4 * std::max(1u, std::thread::hardware_concurrency());
+		for (size_t from = 0; from < pairs.size() && !out_of_time(); from += batch) {
+			const size_t                      n = std::min(batch, pairs.size() - from);
+			std::vector<std::optional<Group>> u(n);
+			parallel_for(n, [&](size_t i) { u[i] = unite(pairs[from + i].first, pairs[from + i].second); });
+			for (size_t i = 0; i < n; ++i) {
+				if (!u[i]) continue;
+				pool.push_back({pairs[from + i].first, pairs[from + i].second, std::move(*u[i])});
+				heap.push((int) pool.size() - 1);
+			}
+			if (pairs.size() > batch) {
+				char msg[96];
+				std::snprintf(msg, sizeof msg, "Merging neighbouring parts: %zu of %zu pairs measured", from + n, pairs.size());
+				report(msg);
+			}
+		}
+	}
+
+	void greedy()
+	{
+		while (!heap.empty() && !out_of_time()) {
+			const int i = heap.top();
+			heap.pop();
+			const int a = pool[i].a, b = pool[i].b;
+			Group u = std::move(pool[i].u);
+			pool[i].u = Group();
+			if (!groups[a].alive || !groups[b].alive) continue;   // one of them has merged since
+			for (int x : {a, b}) {   // merged away: only its leaves are kept
+				groups[x].alive = false;
+				groups[x].part  = Node();
+				groups[x].extreme.clear();
+			}
+			const int g = (int) groups.size();
+			groups.push_back(std::move(u));
+			std::set<int> around;
+			for (int x : {a, b})
+				for (int n : nbr[x])
+					if (n != a && n != b) around.insert(n);
+			nbr.push_back(around);
+			std::vector<std::pair<int, int>> pairs;
+			for (int n : around) {
+				nbr[n].erase(a), nbr[n].erase(b), nbr[n].insert(g);
+				pairs.push_back({n, g});
+			}
+			++merges;
+			char msg[96];
+			std::snprintf(msg, sizeof msg, "Merging neighbouring parts: %d merged", merges);
+			report(msg);
+			score(pairs);
+		}
+	}
+
+	// Each merged part becomes a node after the tree's, its leaves pointing to it.
+	void record()
+	{
+		for (Group& g : groups) {
+			if (!g.alive || g.leaves.size() < 2) continue;
+			Node& n      = g.part;
+			n.path       = D.nodes[g.leaves[0]].path + "+" + std::to_string(g.leaves.size() - 1);
+			n.merged     = g.leaves;
+			const int id = (int) D.nodes.size();
+			for (int l : g.leaves) D.nodes[l].part = id;
+			D.nodes.push_back(std::move(n));
+		}
+		D.merges = merges;
+	}
+};
+
+} // namespace
+
+std::vector<LeafContact> neighbouring_leaves(const Decomposition& D)
+{
+	std::vector<LeafContact> out;
+	const double eps = 1e-9 * extent(D.nodes[0].mesh.V);
+	for (const Node& n : D.nodes) {
+		if (!n.has_plane || n.solids) continue;
+		const Vec3                     u = n.plane.n.unitOrthogonal(), w = n.plane.n.cross(u);
+		std::vector<int>               side[2];
+		std::vector<std::vector<Tri2>> caps[2];
+		for (int s = 0; s < 2; ++s)
+			for (int l : leaves_below(D, n.child[s])) {
+				std::vector<Tri2> c = cap_on(D.nodes[l].mesh, n.plane, u, w, eps);
+				if (c.empty()) continue;
+				side[s].push_back(l);
+				caps[s].push_back(std::move(c));
+			}
+		for (size_t i = 0; i < side[0].size(); ++i)
+			for (size_t j = 0; j < side[1].size(); ++j)
+				if (caps_overlap(caps[0][i], caps[1][j], eps))
+					out.push_back({std::min(side[0][i], side[1][j]), std::max(side[0][i], side[1][j]), int(&n - D.nodes.data())});
+	}
+	return out;
+}
+
+int merge_parts(Decomposition& D, double tau, const std::function<bool(int, const char*)>& progress, double seconds)
+{
+	return Merger(D, tau, progress, seconds).run();
+}
+
+} // namespace acd

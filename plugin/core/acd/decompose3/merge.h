@@ -1,0 +1,31 @@
+// The merge stage after the cuts: neighbouring parts whose union is still tau-convex become one part.
+// The cuts are made top-down for the most concave notch, so two leaves split high in the tree for a
+// notch elsewhere stay apart although together they are convex; merging gives them back.
+#pragma once
+
+#include "acd/decompose3/decompose.h"
+
+#include <functional>
+
+namespace acd {
+
+// Leaves sharing a cut's cap (with positive area) are neighbours. Greedily, the neighbouring pair
+// whose union is least concave is merged, while the union passes the cuts' certificate: the paper's
+// concavity (which includes the hull's reach) at most tau and the hull's reach certified within 1% of
+// tau, one shell, no cavity. Unions are exact (CGAL corefinement), so the parts stay an exact
+// partition of the solid. The cut tree is kept as it is; each merged part is appended as a node
+// whose `merged` lists the leaves it unites, and those leaves point to it with `part`. Leaves over
+// tau (uncut) are never merged. With `seconds` > 0 merging stops once that long has passed (the parts
+// stay a certified partition; D.merge_time_limit_reached says so). Returns the number of merges.
+int merge_parts(Decomposition& D, double tau, const std::function<bool(int, const char*)>& progress = {},
+                double seconds = 0);
+
+// Neighbouring leaves (node ids a < b): on the two sides of the cut at node `cut`, their caps on its
+// plane overlapping with positive area.
+struct LeafContact
+{
+	int a = -1, b = -1, cut = -1;
+};
+std::vector<LeafContact> neighbouring_leaves(const Decomposition& D);
+
+} // namespace acd

@@ -1,0 +1,88 @@
+#include "acd/prepare/prepare_solid.h"
+#include "acd/mesh/measures.h"
+#include "acd/prepare/alpha_wrap.h"
+#include "acd/prepare/wrap_solid.h"
+
+#include <cstdio>
+
+namespace acd {
+
+const std::vector<PreprocessingMode>& preprocessing_modes()
+{
+	static const std::vector<PreprocessingMode> table = {
+		{Preprocessing::None, "none",
+		 "the mesh must be a closed, 2-manifold, oriented solid that does not intersect itself"},
+		{Preprocessing::AlphaWrap, "alpha_wrap",
+		 "first wrap it with CGAL's 3D alpha wrapping, which turns open, non-manifold, self-intersecting meshes, "
+		 "triangle soups and point clouds into one closed solid (the parts then decompose the wrap, which lies "
+		 "about wrap_offset outside the input)"},
+		{Preprocessing::Auto, "auto",
+		 "as given when it is a valid solid, else welded (vertices within 1e-5 of its size) if that makes it one, "
+		 "else alpha wrapped, doubling alpha (up to 16%) while the wrap is a hollow skin that slipped inside "
+		 "through small holes; an open shell that no such wrap fills keeps the first wrap, its skin. A solid "
+		 "that crosses itself is decomposed as given within 120 s and wrapped when its parts fall short of tau"},
+	};
+	return table;
+}
+
+namespace {
+
+double finite_size(const TriMesh& mesh)
+{
+	std::vector<Vec3> finite;
+	for (const Vec3& p : mesh.V)
+		if (p.allFinite()) finite.push_back(p);
+	if (finite.empty()) throw Error(Error::InvalidInput, "The mesh has no vertex with finite coordinates.");
+	return enclosing_diameter(finite);
+}
+
+void wrapped(PreparedSolid& p, TriMesh wrap, double alpha, double share)
+{
+	p.solid       = make_solid(wrap);
+	p.done        = PreparedSolid::Wrapped;
+	p.alpha       = alpha;
+	p.alpha_share = share;
+}
+
+} // namespace
+
+PreparedSolid prepare_solid(const TriMesh& mesh, const PrepareOptions& o)
+{
+	PreparedSolid p;
+	p.faces_in = mesh.F.size();
+	if (o.mode == Preprocessing::None) p.solid = make_solid(mesh);
+	else {
+		p.size   = finite_size(mesh);
+		p.offset = o.offset * p.size;
+		if (o.mode == Preprocessing::AlphaWrap) {
+			wrapped(p, alpha_wrap(mesh, o.alpha * p.size, p.offset), o.alpha * p.size, o.alpha);
+			p.tries = 1;
+		}
+		else {
+			WrapSolidResult w = wrap_solid(mesh, o.alpha * p.size, p.offset, o.max_alpha * p.size);
+			p.reason = w.reason;
+			p.tries  = w.tries;
+			p.inside = w.inside;
+			if (w.wrapped) wrapped(p, std::move(w.mesh), w.alpha, w.alpha / p.size);
+			else {
+				p.solid  = w.solid ? std::move(*w.solid) : make_solid(w.mesh);
+				p.done   = w.welded > 0 ? PreparedSolid::Welded : PreparedSolid::AsGiven;
+				p.welded = w.welded;
+			}
+		}
+	}
+	if (o.refuse_self_intersection && p.solid.self_intersections > 0)
+		throw Error(Error::InvalidInput, "The mesh intersects itself.", Error::SelfIntersection, p.solid.self_intersections);
+	return p;
+}
+
+std::string describe(const PreparedSolid& p)
+{
+	char buf[64];
+	if (p.done == PreparedSolid::Welded) std::snprintf(buf, sizeof buf, "welded %d vertices", p.welded);
+	else if (p.done == PreparedSolid::Wrapped) std::snprintf(buf, sizeof buf, "alpha wrap %.3g%%", 100 * p.alpha_share);
+	else std::snprintf(buf, sizeof buf, "as given");
+	return buf;
+}
+
+} // namespace acd

@@ -1,0 +1,62 @@
+// The one preprocessing entry: a mesh as the user gives it becomes the solid the decomposition cuts,
+// as given, welded or alpha wrapped, with a record of what was done. A new mode is a value of the enum,
+// a row of preprocessing_modes() and its branch in prepare_solid.cpp.
+#pragma once
+
+#include "acd/mesh/mesh.h"
+#include "acd/solid/solid.h"
+
+#include <string>
+#include <vector>
+
+namespace acd {
+
+// Values are stable (scripts store labels, .mlx files the menu index of the table's rows).
+enum class Preprocessing
+{
+	None,        // the mesh must be a valid solid
+	AlphaWrap,   // always wrapped (CGAL's 3D alpha wrapping)
+	Auto         // as given if a valid solid, else welded if that makes one, else wrapped
+};
+
+struct PreprocessingMode
+{
+	Preprocessing id;
+	const char*   label;
+	const char*   help;
+};
+const std::vector<PreprocessingMode>& preprocessing_modes();
+
+struct PrepareOptions
+{
+	Preprocessing mode      = Preprocessing::Auto;
+	double        alpha     = 0.02;    // wrap alpha, a share of the input's enclosing diameter
+	double        offset    = 0.001;   // wrap offset, the same
+	double        max_alpha = 0.16;    // auto doubles alpha up to this while the wrap is a hollow skin
+	bool          refuse_self_intersection = false;   // throw Error(SelfIntersection) for a crossing solid
+};
+
+struct PreparedSolid
+{
+	enum Done { AsGiven, Welded, Wrapped };
+	Solid       solid;
+	Done        done    = AsGiven;
+	int         welded  = 0;      // vertices merged into another
+	double      alpha   = 0;      // the wrap's alpha kept, model units (0: not wrapped)
+	double      alpha_share = 0;  // the same, a share of size
+	double      offset  = 0;      // the wrap's offset, model units
+	double      inside  = 1;      // share of the input's interior samples inside the wrap kept
+	int         tries   = 0;      // wraps computed
+	double      size    = 0;      // enclosing diameter of the input's finite vertices
+	size_t      faces_in = 0;
+	std::string reason;           // why the input was not used as given
+};
+
+// Throws Error(InvalidInput) when the mode cannot make a solid of the mesh (None and an invalid mesh, or
+// nothing finite to wrap), and with refuse_self_intersection for a solid that crosses itself.
+PreparedSolid prepare_solid(const TriMesh& mesh, const PrepareOptions& options);
+
+// What was done, in a few words: "as given", "welded 12 vertices", "alpha wrap 2%".
+std::string describe(const PreparedSolid& p);
+
+} // namespace acd

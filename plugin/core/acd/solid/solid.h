@@ -1,0 +1,34 @@
+// A closed, oriented, edge-manifold solid made from a triangle mesh, or a clear error saying why not.
+#pragma once
+
+#include "acd/mesh/mesh.h"
+
+#include <utility>
+#include <vector>
+
+namespace acd {
+
+// A validated solid: compact, finite, closed, 2-manifold along edges, consistently and outward
+// oriented. Vertices shared by several fans (non-manifold vertices) are split into one copy per fan,
+// so every later step can rely on edge-manifoldness. `source_vertex[i]` is the input index of V[i].
+struct Solid
+{
+	TriMesh          mesh;
+	std::vector<int> source_vertex;
+	int              shells = 0;            // connected components (by edges)
+	int              split_vertices = 0;    // non-manifold vertices that were split
+	int              unreferenced_vertices = 0;
+	bool             flipped = false;       // the input (or some shell) was inside out and has been turned
+	int              reoriented_shells = 0; // shells whose orientation disagreed with their nesting
+	int              cavities = 0;          // shells nested inside another an odd number of times
+	long             self_intersections = 0;   // pairs of faces crossing away from shared corners
+	double           volume = 0;
+};
+
+// Throws Error(InvalidInput) naming the first problem found (with its code and count).
+Solid make_solid(const TriMesh& input);
+
+// The pairs of faces that cross away from shared corners (corners within 1e-9 `diag` count as shared).
+std::vector<std::pair<int, int>> self_crossings(const TriMesh& m, double diag);
+
+} // namespace acd
