@@ -1,9 +1,10 @@
 // Decompose an OBJ file from the command line (for profiling the core without MeshLab):
-//   acd_run mesh.obj tau_percent [bisector_or_face|bisector|best|min_section][+merge] [max_parts]
-// ACD_RUN_WRAP=alpha_percent wraps the mesh first as preprocessing = auto does (welded or wrapped),
-// ACD_RUN_OFFSET=percent at that offset (0.1 unless given).
-#include "acd/decompose3/decompose.h"
-#include "acd/prepare/wrap_solid.h"
+//   acd_run mesh.obj [tau_percent] [CUT_PLANE_SELECTION][+merge] [max_parts]
+// Defaults and labels come from the options table (acd/api/options.h); the mesh is taken as given unless
+// ACD_RUN_WRAP=alpha_percent, which prepares it as preprocessing = auto does (welded or wrapped), at
+// ACD_RUN_OFFSET=percent (the table's wrap_offset unless given).
+#include "acd/api/options.h"
+#include "acd/decompose3/decompose_mesh.h"
 #include "acd/mesh/measures.h"
 #include "acd/solid/solid.h"
 #include "obj_io.h"
@@ -49,38 +50,43 @@ static void print_cuts(const acd::Decomposition& d)
 
 int main(int argc, char** argv)
 {
-	if (argc < 3) {
-		std::fprintf(stderr, "usage: %s mesh.obj tau_percent [bisector_or_face|bisector|best|min_section][+merge] [max_parts]\n", argv[0]);
+	const acd::Option& cuts = acd::option("cut_plane_selection");
+	if (argc < 2) {
+		std::fprintf(stderr, "usage: %s mesh.obj [tau_percent] [%s][+merge] [max_parts]\n", argv[0], cuts.labels().c_str());
 		return 2;
 	}
 	acd::TriMesh m = acd::bench::read_obj(argv[1]);
 	try {
-		auto t0 = std::chrono::steady_clock::now();
-		if (const char* a = std::getenv("ACD_RUN_WRAP")) {   // preprocessing auto: alpha a% of size
-			const double d      = acd::enclosing_diameter(m.V);
-			const char*  o      = std::getenv("ACD_RUN_OFFSET");   // percent, 0.1 unless given
-			const double offset = (o ? std::atof(o) : 0.1) / 100 * d;
-			m                   = acd::wrap_solid(m, std::atof(a) / 100 * d, offset, 0.16 * d).mesh;
-			std::printf("wrapped: %zu faces in %.3f s\n", m.F.size(),
-			            std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
-		}
-		acd::Solid s = acd::make_solid(m);
-		acd::DecomposeOptions o;
-		o.tau = std::atof(argv[2]) / 100 * acd::enclosing_diameter(s.mesh.V);
+		auto              t0  = std::chrono::steady_clock::now();
 		const std::string sel = argc > 3 ? argv[3] : "";
-		if (sel.rfind("bisector_or_face", 0) == 0) o.cut_plane_selection = acd::CutPlaneSelection::BisectorOrFace;
-		else if (sel.rfind("bisector", 0) == 0) o.cut_plane_selection = acd::CutPlaneSelection::Bisector;
-		else if (sel.rfind("best", 0) == 0) o.cut_plane_selection = acd::CutPlaneSelection::Best;
-		else if (sel.rfind("min_section", 0) == 0) o.cut_plane_selection = acd::CutPlaneSelection::MinSection;
-		o.merge_parts = sel.find("+merge") != std::string::npos;
-		if (argc > 4) o.max_parts = std::atoi(argv[4]);
-		o.progress = [](int p, const char* msg) {
-			std::fprintf(stderr, "%3d%% %s\n", p, msg);
-			return true;
-		};
-		acd::Decomposition d = acd::decompose(s, o);
+		acd::PrepareOptions prep;
+		prep.mode = acd::Preprocessing::None;
+		if (const char* a = std::getenv("ACD_RUN_WRAP")) {   // preprocessing auto: alpha a% of size
+			const char* o = std::getenv("ACD_RUN_OFFSET");
+			prep.mode     = acd::Preprocessing::Auto;
+			prep.alpha    = std::atof(a) / 100;
+			prep.offset   = (o ? std::atof(o) : acd::option("wrap_offset").value) / 100;
+		}
+		const acd::MeshDecomposition md = acd::decompose_mesh(m, prep, [&](const acd::PreparedSolid& p) {
+			if (p.done != acd::PreparedSolid::AsGiven)
+				std::printf("%s: %zu faces in %.3f s\n", acd::describe(p).c_str(), p.solid.mesh.F.size(),
+				            std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+			acd::DecomposeOptions o;
+			const double tau = argc > 2 ? std::atof(argv[2]) : acd::option("tau").value;
+			o.tau            = tau / 100 * acd::enclosing_diameter(p.solid.mesh.V);
+			const int chosen = cuts.value_of(sel.substr(0, sel.find('+')));
+			o.cut_plane_selection = acd::CutPlaneSelection(chosen >= 0 ? chosen : (int) cuts.value);
+			o.merge_parts         = sel.empty() ? acd::option("merge_parts").value != 0 : sel.find("+merge") != std::string::npos;
+			if (argc > 4) o.max_parts = std::atoi(argv[4]);
+			o.progress = [](int p, const char* msg) {
+				std::fprintf(stderr, "%3d%% %s\n", p, msg);
+				return true;
+			};
+			return o;
+		});
+		const acd::Decomposition& d = md.d;
 		double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-		std::printf("faces %zu  tau %.6g  parts %zu  max concavity %.6g  time %.3f s\n", m.F.size(), o.tau,
+		std::printf("faces %zu  tau %.6g  parts %zu  max concavity %.6g  time %.3f s\n", md.prepared.solid.mesh.F.size(), md.options.tau,
 		            d.parts().size(), d.max_part_concavity(), secs);
 		std::printf("tau_convex %d  max hull distance %.6g  merges %d  time limit %d\n", d.tau_convex(),
 		            d.max_hull_distance(), d.merges, d.time_limit_reached);

@@ -6,7 +6,7 @@
 // notch on either side, splitting the holes it crosses, and always yields exactly two polygons.
 #pragma once
 
-#include "acd/decompose3/decompose.h"
+#include "acd/recursion/hole_order.h"
 #include "acd/mesh/polygon2.h"
 #include "acd/recursion/hole_order.h"
 
