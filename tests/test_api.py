@@ -63,8 +63,8 @@ def test_bad_arrays_are_refused_with_a_message():
         pymeshlab_acd.convex_decomposition(np.zeros((4, 3)))
     V, F = extrude(L_SHAPE, 0, 1)
     with pytest.raises(pymeshlab.PyMeshLabException, match="open"):
-        pymeshlab_acd.convex_decomposition(V, F[:-1])
-    hulls = pymeshlab_acd.convex_decomposition(V, F[:-1], preprocessing="auto", tau=5.0)
+        pymeshlab_acd.convex_decomposition(V, F[:-1], preprocessing="none")
+    hulls = pymeshlab_acd.convex_decomposition(V, F[:-1], tau=5.0)
     assert len(hulls) >= 2
 
 
@@ -89,18 +89,66 @@ def test_cli_checks_arguments_before_any_work(tmp_path):
     assert r.returncode == 2 and "give --out" in r.stderr
 
 
-def test_the_filter_and_the_command_line_share_their_defaults(ms):
-    """The MeshLab filter's own parameter defaults (what the GUI dialog and a bare pymeshlab call get) are
-    the table the command line, the batch and convex_decomposition start from."""
+def _filter_defaults(ms):
+    """The MeshLab filter's own parameter defaults (the GUI dialog's, a bare pymeshlab call's), with each
+    choice's menu index turned into its label."""
+    from pymeshlab_acd.options import choices
+    got = ms.filter_parameter_values("generate_approximate_convex_decomposition")
+    return {k: (choices(k)[v] if k in ("tau_unit", "cut_plane_selection", "hole_handling", "hole_order",
+                                        "preprocessing", "on_self_intersection") else v) for k, v in got.items()}
+
+
+def _cli_defaults():
+    from pymeshlab_acd.__main__ import main
+    import argparse
+    seen = {}
+    real = argparse.ArgumentParser.parse_args
+
+    def capture(self, args=None, namespace=None):
+        seen.update(vars(real(self, args, namespace)))
+        raise SystemExit(0)
+    argparse.ArgumentParser.parse_args = capture
+    try:
+        with pytest.raises(SystemExit):
+            main(["decompose", "x.obj"])
+    finally:
+        argparse.ArgumentParser.parse_args = real
+    return seen
+
+
+def test_the_filter_the_command_line_and_the_api_share_their_defaults(ms, monkeypatch):
+    """Option by option, preprocessing included: the filter's defaults, the command line's and what
+    convex_decomposition passes to the filter when given nothing but the mesh."""
+    import inspect
     from pymeshlab_acd.options import DEFAULTS
     add_mesh(ms, *extrude(L_SHAPE, 0, 1))
-    got = ms.filter_parameter_values("generate_approximate_convex_decomposition")
-    selections = ["best", "bisector", "min_section", "bisector_or_face"]
-    assert got["tau"] == DEFAULTS["tau"] and got["tau_unit"] == 0
-    assert selections[got["cut_plane_selection"]] == DEFAULTS["cut_plane_selection"]
-    assert got["merge_parts"] is DEFAULTS["merge_parts"] and got["max_parts"] == DEFAULTS["max_parts"]
-    assert got["wrap_alpha"] == pytest.approx(DEFAULTS["wrap_alpha"])
-    assert got["wrap_offset"] == pytest.approx(DEFAULTS["wrap_offset"])
+    filt, cli = _filter_defaults(ms), _cli_defaults()
+    passed = {}
+    real = pymeshlab_acd.decompose
+    monkeypatch.setattr(pymeshlab_acd, "decompose", lambda m, **kw: (passed.update(kw), real(m, **kw))[1])
+    pymeshlab_acd.convex_decomposition(*extrude(L_SHAPE, 0, 1))
+    assert inspect.signature(pymeshlab_acd.convex_decomposition).parameters["tau"].default is None
+    for name, default in DEFAULTS.items():
+        assert filt[name] == pytest.approx(default) if isinstance(default, float) else filt[name] == default, name
+        assert cli[name] == default, name
+        assert passed[name] == default, name
+    assert DEFAULTS["preprocessing"] == "auto"
+
+
+def test_convex_decomposition_decomposes_an_open_mesh_as_the_cli_does(tmp_path):
+    """An open box (one face missing): the API's default preprocessing welds or wraps it, as the CLI's does."""
+    import trimesh
+    box = trimesh.creation.box((2, 1, 1))
+    V, F = np.asarray(box.vertices), np.asarray(box.faces)[1:]
+    hulls, parts, res = pymeshlab_acd.convex_decomposition(V, F, return_parts=True)
+    assert res["alpha_wrapped"] and res["preprocessing_done"] == 2
+    assert len(hulls) >= 1 and res["tau_convex"]
+    # the hulls cover the input: every input vertex lies inside or on some hull (scipy, not the core)
+    from scipy.spatial import Delaunay
+    inside = np.zeros(len(V), bool)
+    for hv, _ in hulls:
+        inside |= Delaunay(hv).find_simplex(V, tol=1e-9) >= 0
+    assert inside.all()
 
 
 def test_every_subcommand_starts_from_the_same_defaults():
@@ -166,7 +214,7 @@ def test_cli_writes_one_hulls_file_and_draws_one_progress_line(tmp_path):
 
 def test_bound_filters_document_their_parameters():
     doc = pymeshlab.MeshSet.generate_approximate_convex_decomposition.__doc__
-    assert "tau : float = 2" in doc and "preprocessing : str = 'none'" in doc and "PercentageValue" in doc
+    assert "tau : float = 2" in doc and "preprocessing : str = 'auto'" in doc and "PercentageValue" in doc
     for name in pymeshlab_acd.FILTERS:
         assert "Parameters" in getattr(pymeshlab.MeshSet, name).__doc__
 
@@ -174,7 +222,7 @@ def test_bound_filters_document_their_parameters():
 def test_an_open_mesh_is_refused_with_this_tools_remedy_first():
     V, F = extrude(L_SHAPE, 0, 1)
     with pytest.raises(pymeshlab.PyMeshLabException) as e:
-        pymeshlab_acd.convex_decomposition(V, F[:-1])
+        pymeshlab_acd.convex_decomposition(V, F[:-1], preprocessing="none")
     msg = str(e.value)
     assert msg.index("preprocessing to 'auto'") < msg.index("Close Holes")
 

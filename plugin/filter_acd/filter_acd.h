@@ -49,6 +49,7 @@ private:
 		acd::DecomposeOptions options;
 		double                size = 0;
 		acd::Decomposition    d;
+		std::string           fallback;   // why the solid as given was wrapped after all
 	};
 	Run  runDecomposition(const RichParameterList& par, MeshModel& input, vcg::CallBackPos* cb);
 	void log_prepared(const acd::PreparedSolid& p);

@@ -184,7 +184,7 @@ FilterACD::Run FilterACD::runDecomposition(const RichParameterList& par, MeshMod
 	});
 	if (!md.fallback.empty()) log("Decomposed as given, %s: alpha wrapped instead.", md.fallback.c_str());
 	const double size = acd::enclosing_diameter(md.prepared.solid.mesh.V);
-	return {std::move(md.prepared), md.options, size, std::move(md.d)};
+	return {std::move(md.prepared), md.options, size, std::move(md.d), md.fallback};
 }
 
 void FilterACD::log_prepared(const acd::PreparedSolid& p)
@@ -270,7 +270,10 @@ FilterACD::decompose(const RichParameterList& par, MeshDocument& md, vcg::CallBa
 		{"alpha_wrapped", run.prepared.done == acd::PreparedSolid::Wrapped},
 		{"wrap_alpha_used", run.prepared.done == acd::PreparedSolid::Wrapped ? 100 * run.prepared.alpha_share : 0.0},
 		{"welded_vertices", run.prepared.welded},
-		{"preprocessing_done", QString::fromStdString(acd::describe(run.prepared))},
+		{"preprocessing_done", (int) run.prepared.done},   // 0 as given, 1 welded, 2 alpha wrapped
+		{"self_crossing_wrapped", !run.fallback.empty()},
+		{"not_as_given_code", run.prepared.reason_code},   // why not as given: acd::Error::Code (0: it was)
+		{"not_as_given_count", (int) run.prepared.reason_count},
 		{"self_intersections", (int) s.self_intersections},
 		{"cavities", s.cavities},
 		{"hole_cuts", d.hole_cuts},

@@ -208,13 +208,14 @@ def _tau_value(ms, params):
                     f"pymeshlab.PercentageValue or pymeshlab.PureValue, not {type(tau).__name__}")
 
 
-def convex_decomposition(vertices, faces=None, tau=2.5, return_parts=False, **filter_params):
+def convex_decomposition(vertices, faces=None, tau=None, return_parts=False, **filter_params):
     """Approximate convex decomposition of a triangle mesh given as arrays, without a MeshSet or files.
 
     `vertices` (n x 3) and `faces` (m x 3), or a `trimesh.Trimesh` (or anything with `vertices` and
     `faces`) as the first argument. `tau` and `filter_params` are generate_approximate_convex_decomposition's
-    (e.g. cut_plane_selection, max_parts, preprocessing="auto" for open or dirty meshes,
-    max_hull_vertices). Returns the convex hulls as a list of (V, F) numpy arrays, one per part; with
+    (e.g. cut_plane_selection, max_parts, preprocessing, max_hull_vertices); what is not given takes
+    pymeshlab_acd.options.DEFAULTS, as the command line does (preprocessing "auto": an open or dirty mesh
+    is welded or alpha wrapped). Returns the convex hulls as a list of (V, F) numpy arrays, one per part; with
     `return_parts=True`, (hulls, parts, result) where parts are the closed pieces of the solid the hulls
     stand for and result is the filter's result dictionary.
     """
@@ -230,7 +231,9 @@ def convex_decomposition(vertices, faces=None, tau=2.5, return_parts=False, **fi
         raise ValueError(f"vertices must be n x 3 and faces m x 3 (got {V.shape} and {F.shape})")
     ms = pymeshlab.MeshSet()
     ms.add_mesh(pymeshlab.Mesh(vertex_matrix=V, face_matrix=F), "input")
-    params = dict(filter_params, tau=tau, output_hulls=True)
+    from .options import DEFAULTS
+    params = dict(DEFAULTS, **filter_params)
+    params.update(tau=DEFAULTS["tau"] if tau is None else tau, output_hulls=True)
     res, ids = decompose(ms, with_tree=False, **params)
     hulls, parts = [], []
     for i in ids:

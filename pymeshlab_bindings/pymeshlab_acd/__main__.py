@@ -19,7 +19,7 @@ import pymeshlab
 from . import decompose, decompose_polygon, level_of_detail, load, mesh_ids
 from . import polygon_io
 from .batch import DEFAULTS as BATCH
-from .export import export_decomposition
+from .export import export_decomposition, write_obj_objects
 from .options import DEFAULTS, add_arguments
 from .progress import ProgressBar
 
@@ -31,17 +31,6 @@ def _meshset(path):
     ms = pymeshlab.MeshSet()
     ms.load_new_mesh(str(path))
     return ms
-
-
-def _write_objects(path, meshes, prefix):
-    """One OBJ holding every mesh as its own object (`o <prefix>_<k>`), as CoACD and V-HACD write hulls."""
-    with open(path, "w") as f:
-        base = 1
-        for k, (V, F) in enumerate(meshes):
-            f.write(f"o {prefix}_{k}\n")
-            f.writelines(f"v {x:.17g} {y:.17g} {z:.17g}\n" for x, y, z in V)
-            f.writelines(f"f {a + base} {b + base} {c + base}\n" for a, b, c in F)
-            base += len(V)
 
 
 def cmd_concavity(a):
@@ -99,8 +88,8 @@ def cmd_decompose(a):
         hulls = [i for i in ids if ms.mesh(i).label().startswith("acd_hull_")]
         parts = [i for i in ids if i not in hulls]
         arrays = lambda layers: [(ms.mesh(i).vertex_matrix(), ms.mesh(i).face_matrix()) for i in layers]  # noqa: E731
-        _write_objects(out / "hulls.obj", arrays(hulls), "hull")
-        _write_objects(out / "parts.obj", arrays(parts), "part")
+        write_obj_objects(out / "hulls.obj", arrays(hulls), "hull")
+        write_obj_objects(out / "parts.obj", arrays(parts), "part")
         summary = {k: v for k, v in res.items() if k != "tree"}
         (out / "summary.json").write_text(json.dumps(summary, indent=1, default=float))
         wrote = ["hulls.obj", "parts.obj", "summary.json"]
@@ -183,7 +172,8 @@ def cmd_batch(a):
                         cut_plane_selection=a.cut_plane_selection, max_parts=a.max_parts,
                         merge_parts=a.merge_parts, max_hull_vertices=a.max_hull_vertices, preprocessing=a.preprocessing,
                         wrap_alpha=a.wrap_alpha, wrap_offset=a.wrap_offset,
-                        time_limit=a.time_limit, timeout=a.timeout, formats=fmt, scale=a.scale, density=a.density,
+                        time_limit=a.time_limit, hole_handling=a.hole_handling, hole_order=a.hole_order,
+                        on_self_intersection=a.on_self_intersection, timeout=a.timeout, formats=fmt, scale=a.scale, density=a.density,
                         save_tree=a.save_tree)
     w = max([len(pathlib.Path(r["file"]).name) for r in records] + [4])
     print(f"{'file':<{w}}  {'status':<11} {'parts':>5} {'concavity %':>11} {'hulls/vol':>9} {'time s':>7}  "
@@ -269,13 +259,8 @@ def main(argv=None):
     c.add_argument("--out", help="folder for concavity.ply (vertex quality = concavity)")
     d.add_argument("--out", help="folder for hulls.obj (one object per hull), parts.obj and summary.json")
     add_arguments(d, "tau", "tau_unit", "cut_plane_selection", "max_parts", "merge_parts", "max_hull_vertices",
-                  "preprocessing",
-                  "wrap_alpha", "wrap_offset", "time_limit")
-    d.add_argument("--hole-handling", default="best_plane", choices=["best_plane", "principal_plane", "keep_cavities"],
-                   help="how cavities (closed inner shells) are resolved")
-    d.add_argument("--hole-order", default="first", choices=["first", "by_concavity"],
-                   help="cut cavities before notches (the paper) or in turn by concavity")
-    d.add_argument("--on-self-intersection", default="warn", choices=["warn", "refuse"])
+                  "preprocessing", "wrap_alpha", "wrap_offset", "time_limit", "hole_handling", "hole_order",
+                  "on_self_intersection")
     d.add_argument("--hulls", action="store_true", help="also add each part's hull as a layer (always with --out)")
     d.add_argument("--part-files", action="store_true", help="also write every part and hull as its own OBJ")
     d.add_argument("--tree", action="store_true", help="also write the cut tree as tree.json")
@@ -300,7 +285,8 @@ def main(argv=None):
     b.add_argument("--ray-runtime-env", metavar="JSON", help="Ray runtime_env for the workers, e.g. "
                    "'{\"pip\": [\"/shared/pymeshlab_acd-0.1.0-py3-none-any.whl\"]}'")
     add_arguments(b, "tau", "tau_unit", "cut_plane_selection", "max_parts", "merge_parts", "max_hull_vertices",
-                  "preprocessing", "wrap_alpha", "wrap_offset", "time_limit")
+                  "preprocessing", "wrap_alpha", "wrap_offset", "time_limit", "hole_handling", "hole_order",
+                  "on_self_intersection")
     b.add_argument("--timeout", type=float, default=BATCH["timeout"],
                    help="per mesh process, killed after (s; 0: none)")
     b.add_argument("--formats", default=",".join(BATCH["formats"]), help="collision hull files: obj, stl or both")

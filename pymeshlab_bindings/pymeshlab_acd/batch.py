@@ -69,55 +69,28 @@ def decompose_file(src, out_dir, opts):
     params = dict(tau=opts["tau"], tau_unit=opts["tau_unit"], cut_plane_selection=opts["cut_plane_selection"],
                   max_parts=opts["max_parts"], merge_parts=opts["merge_parts"], output_hulls=True,
                   max_hull_vertices=opts["max_hull_vertices"], time_limit=opts["time_limit"],
-                  wrap_offset=opts["wrap_offset"])
+                  wrap_offset=opts["wrap_offset"], hole_handling=opts["hole_handling"], hole_order=opts["hole_order"],
+                  on_self_intersection=opts["on_self_intersection"])
 
-    def attempt(preprocessing, alpha):
-        ms = pymeshlab.MeshSet()
-        ms.load_new_mesh(str(src))
-        source = ms.current_mesh_id()
-        tree = pathlib.Path(out_dir) / f".tree-{preprocessing}-{alpha:g}.json"
-        run = dict(params)
-        if preprocessing == "none" and opts["preprocessing"] == "auto" and _crosses_itself(ms):
-            # Cuts through a self-crossing surface can peel slivers for a long time: as given gets a
-            # bounded try (its parts then fall short of tau and the mesh is wrapped instead).
-            run["time_limit"] = min(run["time_limit"] or SELF_CROSSING_TRY, SELF_CROSSING_TRY)
-            ms.set_current_mesh(source)
-        res, ids = decompose(ms, preprocessing=preprocessing, wrap_alpha=alpha, **run,
-                             **({"tree_file": str(tree)} if opts["save_tree"] else {"with_tree": False}))
-        hulls = [i for i in ids if ms.mesh(i).label().startswith("acd_hull_")]
-        parts = [i for i in ids if i not in hulls]
-        vol = mass_properties(*merged_layers(ms, parts))[0]      # the solid decomposed (the wrap, if wrapped)
-        hull_vol = sum(mass_properties(ms.mesh(i).vertex_matrix(), ms.mesh(i).face_matrix())[0] for i in hulls)
-        return dict(ms=ms, source=source, res=res, parts=parts, hulls=hulls, ratio=hull_vol / vol, alpha=alpha,
-                    tree=tree)
-
-    pre, note = opts["preprocessing"], ""
-    if pre != "auto":
-        a = attempt(pre, opts["wrap_alpha"])
-    else:
-        try:
-            a, pre = attempt("none", opts["wrap_alpha"]), "none"
-            r = a["res"]
-            if r.get("self_intersections") and not r.get("tau_convex", True):
-                raise pymeshlab.PyMeshLabException(
-                    f"the mesh intersects itself ({r['self_intersections']} face pairs) and its parts as given "
-                    "are not all within tau")
-        except pymeshlab.PyMeshLabException as e:
-            if "intersects itself" in str(e):
-                # Closed, but crossing itself where a cut needed it not to: only a wrap makes it one solid.
-                a, pre = attempt("alpha_wrap", opts["wrap_alpha"]), f"alpha_wrap {opts['wrap_alpha']:g}%"
-            else:
-                # Open, non-manifold or otherwise unusable as given: the filter's `auto` welds it, or wraps
-                # it into a closed solid, doubling alpha (up to 16% of size) while the wrap is a hollow skin.
-                a = attempt("auto", opts["wrap_alpha"])
-                pre = (f"alpha_wrap {a['res']['wrap_alpha_used']:.3g}%" if a["res"]["alpha_wrapped"] else
-                       f"welded {a['res']['welded_vertices']} vertices")
-            note = f"wrapped: as given, {_reason(e)}"
-    ms, source, res, parts, hulls = a["ms"], a["source"], a["res"], a["parts"], a["hulls"]
+    # The filter prepares the mesh by the core's one policy (preprocessing auto: as given, welded or
+    # wrapped, and a solid that crosses itself wrapped when its parts as given fall short of tau).
+    ms = pymeshlab.MeshSet()
+    ms.load_new_mesh(str(src))
+    source = ms.current_mesh_id()
+    tree = pathlib.Path(out_dir) / ".tree.json"
+    res, ids = decompose(ms, preprocessing=opts["preprocessing"], wrap_alpha=opts["wrap_alpha"], **params,
+                         **({"tree_file": str(tree)} if opts["save_tree"] else {"with_tree": False}))
+    hulls = [i for i in ids if ms.mesh(i).label().startswith("acd_hull_")]
+    parts = [i for i in ids if i not in hulls]
+    vol = mass_properties(*merged_layers(ms, parts))[0]      # the solid decomposed (the wrap, if wrapped)
+    hull_vol = sum(mass_properties(ms.mesh(i).vertex_matrix(), ms.mesh(i).face_matrix())[0] for i in hulls)
+    a = dict(ratio=hull_vol / vol, tree=tree)
+    pre = ("none", f"welded {res['welded_vertices']} vertices", f"alpha_wrap {res['wrap_alpha_used']:.3g}%")[
+        res["preprocessing_done"]]
+    note = ("wrapped: as given, it intersects itself and its parts fell short of tau or a cut opened a part"
+            if res["self_crossing_wrapped"] else _not_as_given(res))
     if opts["save_tree"]:   # the chosen attempt's tree, for coarser levels later
         a["tree"].rename(pathlib.Path(out_dir) / "tree.json")
-        for t in pathlib.Path(out_dir).glob(".tree-*.json"):
-            t.unlink()
     written = export_decomposition(ms, source, parts, hulls, out_dir, name=pathlib.Path(src).stem,
                                    formats=tuple(opts["formats"]), scale=opts["scale"], density=opts["density"])
     m = ms.mesh(source)
@@ -134,15 +107,17 @@ def decompose_file(src, out_dir, opts):
     return rec
 
 
-SELF_CROSSING_TRY = 120.0   # seconds for a self-crossing mesh as given, under preprocessing auto
+# Why a mesh was not decomposed as given, by the core's error code (acd::Error::Code, in its order).
+NOT_AS_GIVEN = ("", "a point cloud ({} vertices)", "{} faces repeat a vertex", "{} zero-area faces",
+                "{} duplicate faces", "open ({} boundary edges)", "{} non-manifold edges",
+                "{} misoriented edges", "a cut opened a part", "its boundary touches itself", "it intersects itself")
 
 
-def _crosses_itself(ms):
-    """MeshLab's own check: does the current mesh have faces that cross each other?"""
-    ms.compute_selection_by_self_intersections_per_face()
-    crossing = ms.current_mesh().selected_face_number() > 0
-    ms.set_selection_none()
-    return crossing
+def _not_as_given(res):
+    code = res.get("not_as_given_code", 0)
+    if not code or res["preprocessing_done"] == 0:
+        return ""
+    return "wrapped: as given, " + NOT_AS_GIVEN[code].format(res["not_as_given_count"]) if code < len(NOT_AS_GIVEN) else ""
 
 
 def _reason(e):

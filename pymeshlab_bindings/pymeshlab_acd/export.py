@@ -44,47 +44,64 @@ def merged_layers(ms, ids):
     return np.concatenate(Vs), np.concatenate(Fs)
 
 
+def write_obj_objects(path, meshes, prefix):
+    """One OBJ holding every (V, F) mesh as its own object (`o <prefix>_<k>`), as CoACD and V-HACD write hulls."""
+    with open(path, "w") as f:
+        base = 1
+        for k, (V, F) in enumerate(meshes):
+            f.write(f"o {prefix}_{k}\n")
+            f.writelines(f"v {x:.17g} {y:.17g} {z:.17g}\n" for x, y, z in V)
+            f.writelines(f"f {a + base} {b + base} {c + base}\n" for a, b, c in F)
+            base += len(V)
+
+
 def _save(ms, layer_id, path, **kw):
     ms.set_current_mesh(layer_id)
     ms.save_current_mesh(str(path), **kw)
 
 
 def export_decomposition(ms, source_id, part_ids, hull_ids, out_dir, name="object", formats=("obj", "stl"),
-                         scale=1.0, density=1000.0, urdf=True, mjcf=True, mlp=True, visual=True):
+                         scale=1.0, density=1000.0, descriptions=None, visual=True):
     """Write the decomposition held in `ms` to `out_dir`.
 
     source_id: the input layer; part_ids / hull_ids: the parts' and their hulls' layers (hull_ids may be
-    empty: then the parts are the collision meshes, and simulators take their hulls). `scale` maps
-    model units to metres; `density` is in kg/m^3. Returns {kind: [relative paths]}.
+    empty: then the parts are the collision meshes, and simulators take their hulls). `formats`: mesh
+    formats of the collision files (MESH_FORMATS); `descriptions`: what else to write (DESCRIPTIONS; all
+    when None). `scale` maps model units to metres; `density` is in kg/m^3. Returns {kind: [relative paths]}.
     """
     out = pathlib.Path(out_dir)
     (out / "collision").mkdir(parents=True, exist_ok=True)
-    written = {"collision": [], "parts": [], "visual": [], "urdf": [], "mjcf": [], "mlp": []}
+    written = {"collision": [], "parts": [], "visual": []} | {k: [] for k in DESCRIPTIONS}
     colliders = hull_ids or part_ids
     for i in colliders:
-        label = ms.mesh(i).label()
         for ext in formats:
-            rel = f"collision/{label}.{ext}"
-            _save(ms, i, out / rel, **({"save_vertex_color": False} if ext == "obj" else {}))
+            rel = f"collision/{ms.mesh(i).label()}.{ext}"
+            _save(ms, i, out / rel, **MESH_FORMATS[ext])
             written["collision"].append(rel)
     mesh_ext = "obj" if "obj" in formats else formats[0]
-    coll = [f"collision/{ms.mesh(i).label()}.{mesh_ext}" for i in colliders]
     if visual:
-        _save(ms, source_id, out / f"visual.{mesh_ext}", **({"save_vertex_color": False} if mesh_ext == "obj" else {}))
+        _save(ms, source_id, out / f"visual.{mesh_ext}", **MESH_FORMATS[mesh_ext])
         written["visual"].append(f"visual.{mesh_ext}")
     V, F = merged_layers(ms, part_ids)
     vol, com, inertia = mass_properties(V * scale, F)
-    mass = density * vol
-    inertia = density * inertia
-    if urdf:
-        (out / f"{name}.urdf").write_text(_urdf(name, coll, written["visual"], mass, com, inertia, scale))
-        written["urdf"].append(f"{name}.urdf")
-    if mjcf:
-        (out / f"{name}.xml").write_text(_mjcf(name, coll, written["visual"], mass, com, inertia, scale))
-        written["mjcf"].append(f"{name}.xml")
-    if mlp:
-        written["parts"], written["mlp"] = _mlp(ms, part_ids, out, name), [f"{name}.mlp"]
+    body = Body(name, [f"collision/{ms.mesh(i).label()}.{mesh_ext}" for i in colliders], written["visual"],
+                density * vol, com, density * inertia, scale, ms, part_ids, out)
+    for kind in DESCRIPTIONS if descriptions is None else descriptions:
+        written[kind] = DESCRIPTIONS[kind](body)
+    written["parts"] = getattr(body, "parts", [])   # the project's part files
     return written
+
+
+class Body:
+    """What a description writer gets: the object's name, its collision and visual files (relative to the
+    export folder), mass properties, the scale to metres, and the parts' layers."""
+    def __init__(self, name, coll, visual, mass, com, inertia, scale, ms, part_ids, out):
+        self.name, self.coll, self.visual, self.mass, self.com, self.inertia = name, coll, visual, mass, com, inertia
+        self.scale, self.ms, self.part_ids, self.out = scale, ms, part_ids, out
+
+    def write(self, suffix, text):
+        (self.out / f"{self.name}{suffix}").write_text(text)
+        return [f"{self.name}{suffix}"]
 
 
 def _fmt(*xs):
@@ -135,9 +152,10 @@ def _mjcf(name, coll, visual, mass, com, I, scale):
     return ET.tostring(root, encoding="unicode") + "\n"
 
 
-def _mlp(ms, part_ids, out, name):
+def _mlp(body):
     """A MeshLab project with one layer per part (coloured PLY), written by MeshLab's own project
     writer from a MeshSet that holds only the parts."""
+    ms, part_ids, out, name = body.ms, body.part_ids, body.out, body.name
     (out / "parts").mkdir(parents=True, exist_ok=True)
     proj = pymeshlab.MeshSet()
     rels = []
@@ -148,4 +166,20 @@ def _mlp(ms, part_ids, out, name):
         proj.save_current_mesh(str(out / rel), save_vertex_color=True)
         rels.append(rel)
     proj.save_project(str(out / f"{name}.mlp"))   # MeshLab stores the layers' paths relative to it
-    return rels
+    body.parts = rels
+    return [f"{name}.mlp"]
+
+
+# Collision mesh formats: name -> the options pymeshlab's writer takes.
+MESH_FORMATS = {
+    "obj": dict(save_vertex_color=False),
+    "stl": {},
+}
+
+# What else an export writes: name -> writer(body) -> the relative paths written. A new format is a
+# writer above and its row here.
+DESCRIPTIONS = {
+    "urdf": lambda b: b.write(".urdf", _urdf(b.name, b.coll, b.visual, b.mass, b.com, b.inertia, b.scale)),
+    "mjcf": lambda b: b.write(".xml", _mjcf(b.name, b.coll, b.visual, b.mass, b.com, b.inertia, b.scale)),
+    "mlp": _mlp,
+}

@@ -1,5 +1,6 @@
-"""One table of defaults for every entry point: the CLI's subcommands, the batch runner and
-convex_decomposition all start from these values (the filters keep MeshLab's own parameter defaults)."""
+"""One table of defaults for every Python entry point: the CLI's subcommands, the batch runner and
+convex_decomposition all start from these values, which are the filter's own (tests compare them option by
+option). The labels of each choice are read from the plugin, whose options table declares them."""
 
 DEFAULTS = dict(
     tau=2.5,                        # concavity tolerance, % of the size (tau_unit) or model units
@@ -12,6 +13,9 @@ DEFAULTS = dict(
     wrap_alpha=2.0,                 # alpha wrap: alpha, % of the size
     wrap_offset=0.1,                # alpha wrap: offset, % of the size
     time_limit=0.0,                 # seconds in the core; 0: none
+    hole_handling="best_plane",     # cavities: best_plane | principal_plane | keep_cavities
+    hole_order="first",             # cavities before notches (the paper) | by_concavity
+    on_self_intersection="warn",    # warn | refuse
 )
 
 import argparse
@@ -31,10 +35,32 @@ HELP = dict(
     wrap_alpha="alpha wrap: alpha, %% of the size (larger bridges bigger holes)",
     wrap_offset="alpha wrap: offset, %% of the size",
     time_limit="stop cutting after this many seconds (0: none)",
+    hole_handling="how cavities (closed inner shells) are resolved",
+    hole_order="cut cavities before notches (the paper) or in turn by concavity",
+    on_self_intersection="a mesh that crosses itself: decompose with a warning, or refuse",
 )
 
-CHOICES = dict(tau_unit=["percent_of_size", "model_units"], cut_plane_selection=["best", "bisector", "min_section", "bisector_or_face"],
-               preprocessing=["auto", "none", "alpha_wrap"])
+import functools
+import re
+
+FILTER = "generate_approximate_convex_decomposition"
+
+
+@functools.lru_cache(maxsize=None)
+def choices(name):
+    """The labels the filter accepts for option `name`, in menu order, as the plugin's options table
+    declares them (pymeshlab lists them when it refuses a label)."""
+    import pymeshlab
+    from . import load
+    load()
+    ms = pymeshlab.MeshSet()
+    ms.add_mesh(pymeshlab.Mesh(vertex_matrix=[[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1]],
+                               face_matrix=[[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]]))
+    try:
+        getattr(ms, FILTER)(**{name: "?"})
+    except pymeshlab.InvalidEnumException as e:
+        return tuple(re.findall(r"'([^']*)'", str(e).split("Possible values are", 1)[1]))
+    raise ValueError(f"{name} is not a choice of {FILTER}")
 
 
 def add_arguments(parser, *names):
@@ -42,8 +68,8 @@ def add_arguments(parser, *names):
     for name in names:
         default = DEFAULTS[name]
         kw = dict(default=default, help=HELP[name])
-        if name in CHOICES:
-            kw["choices"] = CHOICES[name]
+        if isinstance(default, str):
+            kw["choices"] = choices(name)
         elif isinstance(default, bool):
             kw["action"] = argparse.BooleanOptionalAction
         elif not isinstance(default, str):

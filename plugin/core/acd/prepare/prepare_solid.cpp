@@ -61,6 +61,8 @@ PreparedSolid prepare_solid(const TriMesh& mesh, const PrepareOptions& o)
 		else {
 			WrapSolidResult w = wrap_solid(mesh, o.alpha * p.size, p.offset, o.max_alpha * p.size);
 			p.reason = w.reason;
+			p.reason_code  = w.reason_code;
+			p.reason_count = w.reason_count;
 			p.tries  = w.tries;
 			p.inside = w.inside;
 			if (w.wrapped) wrapped(p, std::move(w.mesh), w.alpha, w.alpha / p.size);
@@ -80,7 +82,7 @@ std::string describe(const PreparedSolid& p)
 {
 	char buf[64];
 	if (p.done == PreparedSolid::Welded) std::snprintf(buf, sizeof buf, "welded %d vertices", p.welded);
-	else if (p.done == PreparedSolid::Wrapped) std::snprintf(buf, sizeof buf, "alpha wrap %.3g%%", 100 * p.alpha_share);
+	else if (p.done == PreparedSolid::Wrapped) std::snprintf(buf, sizeof buf, "alpha_wrap %.3g%%", 100 * p.alpha_share);
 	else std::snprintf(buf, sizeof buf, "as given");
 	return buf;
 }

@@ -50,13 +50,15 @@ struct PreparedSolid
 	double      size    = 0;      // enclosing diameter of the input's finite vertices
 	size_t      faces_in = 0;
 	std::string reason;           // why the input was not used as given
+	int         reason_code  = 0; // that error's Error::Code and count
+	long        reason_count = 0;
 };
 
 // Throws Error(InvalidInput) when the mode cannot make a solid of the mesh (None and an invalid mesh, or
 // nothing finite to wrap), and with refuse_self_intersection for a solid that crosses itself.
 PreparedSolid prepare_solid(const TriMesh& mesh, const PrepareOptions& options);
 
-// What was done, in a few words: "as given", "welded 12 vertices", "alpha wrap 2%".
+// What was done, in a few words: "as given", "welded 12 vertices", "alpha_wrap 2%".
 std::string describe(const PreparedSolid& p);
 
 } // namespace acd

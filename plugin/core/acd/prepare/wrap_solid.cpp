@@ -81,7 +81,9 @@ WrapSolidResult wrap_solid(const TriMesh& input, double alpha, double offset, do
 		return r;
 	} catch (const Error& e) {
 		if (e.kind != Error::InvalidInput) throw;
-		r.reason = e.what();
+		r.reason       = e.what();
+		r.reason_code  = e.code;
+		r.reason_count = e.count;
 	}
 	{
 		std::vector<Vec3> finite;
@@ -115,7 +117,7 @@ WrapSolidResult wrap_solid(const TriMesh& input, double alpha, double offset, do
 		TriMesh      w     = alpha_wrap(input, a, offset);
 		const double share = judge ? share_inside(w, inside) : 1.0;
 		++r.tries;
-		if (r.tries == 1 || share >= min_inside) r = WrapSolidResult{std::move(w), true, 0, a, share, r.tries, r.reason, std::nullopt};
+		if (r.tries == 1 || share >= min_inside) r = WrapSolidResult{std::move(w), true, 0, a, share, r.tries, r.reason, r.reason_code, r.reason_count, std::nullopt};
 		if (share >= min_inside || a * 2 > max_alpha * (1 + 1e-9)) break;
 	}
 	return r;

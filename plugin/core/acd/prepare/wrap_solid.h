@@ -19,6 +19,8 @@ struct WrapSolidResult
 	double      inside  = 1;        // share of the input's interior samples inside the wrap kept
 	int         tries   = 0;        // wraps computed (the last one is not always the one kept)
 	std::string reason;             // why the input was not used as given
+	int         reason_code  = 0;   // and that error's Error::Code and count
+	long        reason_count = 0;
 	std::optional<Solid> solid;     // make_solid(mesh), when not wrapped: no need to validate it again
 };
 
