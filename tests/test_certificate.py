@@ -3,17 +3,17 @@
 Low-poly machine parts (bores, slots, keyways, flanges, steps) are where a concavity measured only at
 vertices can miss how far a hull stands off its part. Each solid is made exactly with manifold3d and
 decomposed with every cut_plane_selection at three taus; each part's hull distance is measured again
-with scipy and libigl (tests/hull_reach.py), sharing no code with the core, with a slack of 1% of tau.
+with scipy and libigl (tests/support/hull_reach.py), sharing no code with the core, with a slack of 1% of tau.
 """
 import numpy as np
 import pymeshlab
 import pytest
 
 import pymeshlab_acd
-from conftest import add_mesh, hull_within, is_closed_manifold, volume
-from hull_reach import hull_reach
+from support.meshes import add_mesh, hull_within, is_closed_manifold, volume
+from support.hull_reach import hull_reach
 
-cad_solids = pytest.importorskip("cad_solids")
+cad_solids = pytest.importorskip("support.cad_solids")
 pytest.importorskip("manifold3d")
 pytest.importorskip("scipy")
 

@@ -6,7 +6,7 @@ import numpy as np
 import pymeshlab
 import pytest
 
-from conftest import BUNNY, L_SHAPE, U_SHAPE, add_mesh, extrude
+from support.meshes import BUNNY, L_SHAPE, U_SHAPE, add_mesh, extrude
 
 
 def test_convex_meshes_have_no_notch(ms):

@@ -11,7 +11,7 @@ import pymeshlab
 import pytest
 
 import pymeshlab_acd
-from conftest import BUNNY, SHARED, add_mesh, volume
+from support.meshes import BUNNY, SHARED, add_mesh, volume
 
 TAU = 5.0                     # percent of the enclosing-sphere diameter (rotation invariant)
 SELECTION = "bisector"

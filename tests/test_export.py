@@ -14,8 +14,8 @@ import pytest
 
 import pymeshlab_acd
 from pymeshlab_acd.export import export_decomposition, mass_properties
-from conftest import BUNNY, U_SHAPE, add_mesh, extrude, is_closed_manifold, volume
-from simulators import drop_mujoco, drop_pybullet, hull_vertices
+from support.meshes import BUNNY, U_SHAPE, add_mesh, extrude, is_closed_manifold, volume
+from support.simulators import drop_mujoco, drop_pybullet, hull_vertices
 
 mujoco = pytest.importorskip("mujoco")
 pybullet = pytest.importorskip("pybullet")
@@ -36,7 +36,7 @@ def test_mass_properties_match_trimesh():
 
 
 def test_mass_properties_of_a_box_are_analytic():
-    from conftest import box
+    from support.meshes import box
     V, F = box((0, 0, 0), (1, 2, 3))
     vol, com, inertia = mass_properties(V, F)
     assert vol == pytest.approx(6)
@@ -45,7 +45,7 @@ def test_mass_properties_of_a_box_are_analytic():
 
 
 def test_mass_properties_refuse_an_inside_out_mesh():
-    from conftest import box
+    from support.meshes import box
     V, F = box()
     with pytest.raises(ValueError):
         mass_properties(V, F[:, ::-1])
@@ -106,7 +106,7 @@ def test_pybullet_loads_and_drops_the_bunny(bunny_export):
 def test_mujoco_loads_an_open_mesh_as_the_visual(tmp_path):
     """An open input (wrapped to decompose it) stays the visual mesh; MuJoCo cannot weigh an open
     mesh, and need not: the body's inertia is explicit."""
-    from conftest import icosphere
+    from support.meshes import icosphere
     pymeshlab_acd.load()
     V, F = icosphere(level=4)
     ms = pymeshlab.MeshSet()

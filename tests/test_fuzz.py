@@ -1,6 +1,6 @@
 """Robustness fuzz test: >= 1000 generated bad or random meshes through every filter.
 
-Cases (tests/fuzz_cases.py) run in child processes, so a crash (signal) or a hang is observed and
+Cases (tests/support/fuzz_cases.py) run in child processes, so a crash (signal) or a hang is observed and
 counted instead of killing pytest; the child is restarted after the offending case. Every case must
 either be refused with the message meant for its mutation (an open mesh as open, NaN as NaN, ...;
 an internal error or a message meant for another defect is a violation) or return parts that pass
@@ -15,8 +15,8 @@ import subprocess
 import sys
 import threading
 
-import fuzz_cases
-from fuzz_cases import kind_of
+from support import fuzz_cases
+from support.fuzz_cases import kind_of
 
 HANG_SECONDS = 120     # one case (both filters, <= 24 parts, 20 s time limit) takes well under this
 WORKERS = max(1, min(2, os.cpu_count() or 1))
@@ -78,4 +78,4 @@ def test_fuzz_bad_and_random_meshes(tmp_path):
     for i, r in list(bad.items())[:20]:
         print(f"  case {i} {fuzz_cases.case(i)}: {r}")
     assert len(results) == fuzz_cases.CASES
-    assert not bad, f"{len(bad)} cases crashed, hung or broke a check (replay: python tests/fuzz_cases.py run N)"
+    assert not bad, f"{len(bad)} cases crashed, hung or broke a check (replay: python tests/support/fuzz_cases.py run N)"

@@ -8,7 +8,7 @@ import pymeshlab
 import pytest
 
 import pymeshlab_acd
-from conftest import BUNNY, add_mesh, hull_within, is_closed_manifold, torus, volume
+from support.meshes import BUNNY, add_mesh, hull_within, is_closed_manifold, torus, volume
 from test_decompose import remeasured_concavity
 
 
@@ -96,7 +96,7 @@ def test_coarser_level_never_covers_a_hole(ms, tmp_path):
     """A low-poly ring's root has a small notch concavity while its hull covers the hole: a coarser
     level at a tau between the two must still split the ring, every part's hull within that tau by the
     independent measure."""
-    from hull_reach import hull_reach
+    from support.hull_reach import hull_reach
     V, F = torus(R=2.0, r=0.5, nu=8, nv=6)
     add_mesh(ms, V, F)
     tree = tmp_path / "ring.json"

@@ -8,9 +8,9 @@ import pymeshlab
 import pytest
 
 import pymeshlab_acd
-from conftest import (L_SHAPE, SHARED, add_mesh, box, component_labels, extrude, icosphere, inside,
+from support.meshes import (L_SHAPE, SHARED, add_mesh, box, component_labels, extrude, icosphere, inside,
                       is_closed_manifold, torus, volume, with_cavities)
-from test_decompose import check_partition, remeasured_concavity
+from support.partition import check_partition, remeasured_concavity
 
 HANDLING = ["principal_plane", "best_plane", "keep_cavities"]
 

@@ -2,7 +2,7 @@
 
 Every merged decomposition is re-measured here, sharing no code with the core: parts closed and
 2-manifold, volumes summing to the input's, no overlap (interior samples of one part inside no other),
-each part's hull within tau (tests/hull_reach.py); the tree file's record of the merges is checked
+each part's hull within tau (tests/support/hull_reach.py); the tree file's record of the merges is checked
 against the leaves' own meshes.
 """
 import json
@@ -12,10 +12,10 @@ import pymeshlab
 import pytest
 
 import pymeshlab_acd
-from conftest import add_mesh, is_closed_manifold, torus, volume
-from test_decompose import check_partition
+from support.meshes import add_mesh, is_closed_manifold, torus, volume
+from support.partition import check_partition
 
-cad_solids = pytest.importorskip("cad_solids")
+cad_solids = pytest.importorskip("support.cad_solids")
 pytest.importorskip("manifold3d")
 
 

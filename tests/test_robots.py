@@ -4,7 +4,7 @@ shoulder link whose wrap has thin pieces where a plane can chip a sliver off and
 concave, and a wrist link whose sharp notch edges have no plane that splits (each shaves a sliver),
 decomposed at the default settings the way the batch runs them (as given when closed, else `auto`:
 welded, or alpha-wrapped; a closed mesh whose self-crossing stops a cut: alpha-wrapped). Every part's
-hull must lie within tau of the part by the independent measure of tests/hull_reach.py (1% of tau
+hull must lie within tau of the part by the independent measure of tests/support/hull_reach.py (1% of tau
 slack), and the parts must be closed and, unless wrapped, add up to the input's volume (divergence
 theorem on the input's triangles, welded or not)."""
 import pathlib
@@ -12,13 +12,12 @@ import sys
 
 import pytest
 
-sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[1] / "scripts"))
 pytest.importorskip("scipy")
 
 
 @pytest.fixture(scope="module")
 def corpus():
-    import bench_robots
+    from support import robots as bench_robots
     try:
         meshes = bench_robots.fetch_corpus()
     except Exception as e:   # no registry reachable and nothing cached
@@ -26,7 +25,7 @@ def corpus():
     files = bench_robots.corpus(meshes)
     assert len(files) == 491
     # The smallest file of each of the first 25 robot descriptions (by name): every kind of robot
-    # part, at a size that keeps the suite short; scripts/bench.sh --robots runs the whole corpus.
+    # part, at a size that keeps the suite short; bench/bench.sh --robots runs the whole corpus.
     by_robot = {}
     for p in files:
         by_robot.setdefault(bench_robots.robot_of(p, meshes), []).append(p)
@@ -49,10 +48,10 @@ WRIST_MAX_PARTS = 2 * 168
 
 @pytest.mark.parametrize("k", range(29))
 def test_robot_mesh_hulls_within_tau(corpus, k, tmp_path):
-    import bench_robots
+    from support import robots as bench_robots
     import numpy as np
     import pymeshlab
-    from conftest import is_closed_manifold, volume
+    from support.meshes import is_closed_manifold, volume
     meshes, subset = corpus
     src = subset[k]
     rec = bench_robots.run_ours(src, tmp_path / "out", timeout=600)

@@ -3,7 +3,7 @@ import subprocess
 import sys
 import textwrap
 
-from conftest import BUNNY
+from support.meshes import BUNNY
 
 # pymeshlab 2025.07 leaves a dangling log pointer after a failed filter; the next .obj load in a
 # new MeshSet wrote through it and crashed (CI run, exit 139). Run in a child so a crash fails
@@ -12,7 +12,7 @@ SCRIPT = textwrap.dedent(f"""
     import gc, sys
     sys.path.insert(0, {repr(str(__import__('pathlib').Path(__file__).parent))})
     import pymeshlab, pymeshlab_acd
-    from conftest import extrude, add_mesh, L_SHAPE
+    from support.meshes import extrude, add_mesh, L_SHAPE
     for i in range(3):
         ms = pymeshlab.MeshSet()
         V, F = extrude(L_SHAPE, 0, 1)

@@ -10,7 +10,7 @@ import pymeshlab
 import pytest
 
 import pymeshlab_acd
-from conftest import BUNNY, SHARED, add_mesh, component_labels, extrude, inside, is_closed_manifold, torus, volume
+from support.meshes import BUNNY, SHARED, add_mesh, component_labels, extrude, inside, is_closed_manifold, torus, volume
 
 
 def layer(ms, label):

@@ -4,6 +4,7 @@
 #pragma once
 
 #include "acd/decompose3/concavity.h"
+#include "acd/mesh/labelled.h"
 
 #include <vector>
 
@@ -40,13 +41,8 @@ enum class CutPolicy
 	BySection         // every plane scored by the cut's cross-section (the neck)
 };
 
-// A strategy's label (what scripts, the GUI and the command line say) and its help, in menu order.
-struct CutStrategy
-{
-	CutPlaneSelection id;
-	const char*       label;
-	const char*       help;
-};
+// The strategies' labels (what scripts, the GUI and the command line say) and help, in menu order.
+using CutStrategy = Labelled<CutPlaneSelection>;
 const std::vector<CutStrategy>& cut_strategies();
 
 // The notch's cut: its planes, best guess first, and how the driver tries them.

@@ -3,6 +3,7 @@
 // a row of preprocessing_modes() and its branch in prepare_solid.cpp.
 #pragma once
 
+#include "acd/mesh/labelled.h"
 #include "acd/mesh/mesh.h"
 #include "acd/solid/solid.h"
 
@@ -19,12 +20,8 @@ enum class Preprocessing
 	Auto         // as given if a valid solid, else welded if that makes one, else wrapped
 };
 
-struct PreprocessingMode
-{
-	Preprocessing id;
-	const char*   label;
-	const char*   help;
-};
+// The modes' labels and help, in menu order.
+using PreprocessingMode = Labelled<Preprocessing>;
 const std::vector<PreprocessingMode>& preprocessing_modes();
 
 struct PrepareOptions

@@ -3,8 +3,8 @@
 results (refactors): per case the part count, the parts' total volume and a hash of every output
 layer's exact vertex and face arrays. Run it once per plugin build and compare:
 
-    ACD_PLUGIN=old/libfilter_acd.so python3 scripts/parts_digest.py > old.json
-    ACD_PLUGIN=new/libfilter_acd.so python3 scripts/parts_digest.py --compare old.json
+    ACD_PLUGIN=old/libfilter_acd.so python3 bench/parts_digest.py > old.json
+    ACD_PLUGIN=new/libfilter_acd.so python3 bench/parts_digest.py --compare old.json
 
 Cases: CAD solids (manifold3d) with every cut_plane_selection, the bundled bunny, a 2D polygon with
 holes, the skeleton and the hull union."""
@@ -17,8 +17,8 @@ import pymeshlab
 
 REPO = pathlib.Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(REPO / "tests"))
-import cad_solids  # noqa: E402
-sys.path.insert(0, str(REPO / "scripts"))
+from support import cad_solids  # noqa: E402
+sys.path.insert(0, str(REPO / "bench"))
 import bench  # noqa: E402
 import pymeshlab_acd  # noqa: E402
 from pymeshlab_acd import polygon_io  # noqa: E402
@@ -37,7 +37,7 @@ def solid(ms, name):
     ms.add_mesh(pymeshlab.Mesh(v, f), name)
 
 
-# Robot meshes (example-robot-data, when scripts/bench.sh --robots has cached it): a film-dropping gripper
+# Robot meshes (example-robot-data, when bench/bench.sh --robots has cached it): a film-dropping gripper
 # link, a closed link as given, an open one (welded or wrapped).
 ROBOT_MESHES = ["z1_description/meshes/collision/z1_GripperMover.STL",
                 "ur_description/meshes/ur10/collision/forearm.stl",
@@ -72,9 +72,8 @@ def cases():
     yield "flange hull union", lambda ms: solid(ms, "flange"), "union", {}
     robots = None
     try:
-        sys.path.insert(0, str(REPO / "scripts"))
-        import bench_robots
-        robots = bench_robots.cache() / "robots" / "meshes"
+        from support import robots as corpus
+        robots = corpus.cache() / "robots" / "meshes"
     except Exception:
         pass
     for rel in ROBOT_MESHES:

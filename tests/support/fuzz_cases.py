@@ -1,7 +1,7 @@
 """Generated bad and random inputs for the robustness fuzz test (tests/test_fuzz.py).
 
 A case is (base mesh, mutation, parameters), all derived from its index, so a failing case can be
-replayed alone:  python tests/fuzz_cases.py run CASE_INDEX
+replayed alone:  python tests/support/fuzz_cases.py run CASE_INDEX
 
 Run as `python fuzz_cases.py child CACHE FIRST LAST`, it processes cases FIRST..LAST-1 and prints one
 line per case ("<i> ok <parts>" or "<i> error <message>" or "<i> violation <what>"), flushed, so the
@@ -12,7 +12,6 @@ import sys
 
 import numpy as np
 
-sys.path.insert(0, str(pathlib.Path(__file__).resolve().parent))
 
 SHARED = pathlib.Path(__file__).resolve().parents[1].parent / "shared" / "data" / "meshes"
 BUNDLED = ["bunny", "cow", "airplane"]                      # ship with pymeshlab: always there
@@ -72,7 +71,7 @@ def allowed(i, with_tau=True):
 
 
 def cube(c=(0, 0, 0), s=1.0):
-    from conftest import extrude
+    from .meshes import extrude
     V, F = extrude([(0, 0), (1, 0), (1, 1), (0, 1)], 0, 1)
     return V * s + np.asarray(c, float), F
 
@@ -80,7 +79,7 @@ def cube(c=(0, 0, 0), s=1.0):
 def base_mesh(name, cache):
     """Small closed meshes (bundled and shared ones decimated to ~800 faces, cached as .npz)."""
     import pymeshlab
-    from conftest import BUNNY, L_SHAPE, PLUS, U_SHAPE, extrude, torus
+    from .meshes import BUNNY, L_SHAPE, PLUS, U_SHAPE, extrude, torus
     if name == "cube":
         return cube()
     if name == "sphere":
@@ -188,7 +187,7 @@ def run_case(i, cache):
     """One case through every filter; returns (kind, detail)."""
     import pymeshlab
     import pymeshlab_acd
-    from conftest import add_mesh, is_closed_manifold, volume
+    from .meshes import add_mesh, is_closed_manifold, volume
     base, how, seed, params = case(i)
     V, F = mutate(*base_mesh(base, cache), how, np.random.default_rng(1000 * i + seed))
     ms = pymeshlab.MeshSet()

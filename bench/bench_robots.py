@@ -1,17 +1,17 @@
 #!/usr/bin/env python3
 """Robot corpus benchmark: every mesh of example-robot-data 6.0.0 (PyPI; 491 STL/OBJ meshes of robot
 descriptions), decomposed at the filter's default settings, each part's hull checked against tau by
-an independent measure (tests/hull_reach.py: scipy's Qhull and exact distances in numpy); and the peers
+an independent measure (tests/support/hull_reach.py: scipy's Qhull and exact distances in numpy); and the peers
 (CoACD 0.05 and 0.1, V-HACD 4, CGAL 16 and 45) beside ours on a fixed sample of 60 meshes that
 represents every robot.
 
-    scripts/bench.sh --robots                  whole corpus (ours) and the 60-mesh sample (all methods)
-    scripts/bench.sh --robots --quick          a fixed 20-mesh subset: ours afresh, the peers' rows resumed
-    scripts/bench.sh --robots --methods ours   ours only (--methods peers: the peers only)
+    bench/bench.sh --robots                  whole corpus (ours) and the 60-mesh sample (all methods)
+    bench/bench.sh --robots --quick          a fixed 20-mesh subset: ours afresh, the peers' rows resumed
+    bench/bench.sh --robots --methods ours   ours only (--methods peers: the peers only)
 Meshes closed as shipped are decomposed as given; open or non-manifold ones take the batch's `auto`
 path (alpha wrap, with the hollow check). Rows are kept per method group in out/robots/robots-ours.json
 and robots-peers.json, so a run resumes where the last one stopped (--fresh starts over; a fresh
-checkout starts from the rows published in docs/robots/) and the two groups can run side by side;
+checkout starts from the rows published in bench/results/robots/) and the two groups can run side by side;
 the summary (robots.md) is written from both. `--quick` always runs ours afresh (its own store,
 robots-ours-quick.json) beside the peers' kept rows (pinned versions; `--fresh` reruns them too).
 """
@@ -30,105 +30,15 @@ import time
 import zipfile
 
 REPO = pathlib.Path(__file__).resolve().parents[1]
-sys.path.insert(0, str(REPO / "scripts"))
+sys.path.insert(0, str(REPO / "bench"))
 sys.path.insert(0, str(REPO / "tests"))
-import bench  # noqa: E402  (run_method, metrics, write_hulls, read_obj)
+import bench  # noqa: E402  (run_method, metrics, read_obj)
+from support.robots import (WHEEL, cache, certificate, corpus, fetch_corpus, mesh_name, robot_of,  # noqa: E402
+                            run_ours, sample)
 
-WHEEL = "example_robot_data-6.0.0-0-py3-none-any.whl"
-WHEEL_SHA256 = "424092a8093411ac2cd4ccc0572382bfc6b5eb4833aa984ef5e671dd67cd0a6e"
-PREFIX = "cmeel.prefix/share/example-robot-data/robots/"
 # CoACD at its default and at 0.1, V-HACD 4 and CGAL at their defaults.
 PEERS = [s for s in bench.SETTINGS if s[0] != "ours" and s[1] != "resolution 100k" and s[1] != "45 volumes"]
 OURS = ("ours", "tau 2.5% bisector_or_face (default)")
-
-
-def cache():
-    return pathlib.Path(os.environ.get("ACD_CACHE") or pathlib.Path.home() / ".cache" / "meshlab-acd")
-
-
-def fetch_corpus():
-    """The wheel (pinned, checksum checked) into the cache, its meshes unpacked beside it."""
-    root = cache() / "robots"
-    meshes = root / "meshes"
-    if (meshes / ".complete").exists():
-        return meshes
-    wheel = root / WHEEL
-    if not wheel.exists() or hashlib.sha256(wheel.read_bytes()).hexdigest() != WHEEL_SHA256:
-        root.mkdir(parents=True, exist_ok=True)
-        subprocess.run([sys.executable, "-m", "pip", "download", "-q", "--no-deps", "-d", str(root),
-                        "example-robot-data==6.0.0"], check=True)
-        if hashlib.sha256(wheel.read_bytes()).hexdigest() != WHEEL_SHA256:
-            raise SystemExit(f"{wheel}: checksum mismatch (expected {WHEEL_SHA256})")
-    with zipfile.ZipFile(wheel) as z:
-        for info in z.infolist():
-            name = info.filename
-            if name.startswith(PREFIX) and name.lower().endswith((".stl", ".obj", ".ply")):
-                dst = meshes / name[len(PREFIX):]
-                dst.parent.mkdir(parents=True, exist_ok=True)
-                dst.write_bytes(z.read(info))
-    (meshes / ".complete").touch()
-    return meshes
-
-
-def corpus(meshes):
-    return sorted(p for p in meshes.rglob("*") if p.suffix.lower() in (".stl", ".obj", ".ply"))
-
-
-def mesh_name(p, meshes, files):
-    """A mesh's name in the tables: its path without the suffix, unless another file differs from it
-    by the suffix alone (a robot shipping one model as .obj and .stl): then with it."""
-    stem = p.with_suffix("")
-    twins = sum(1 for q in files if q.with_suffix("") == stem)
-    return p.relative_to(meshes).as_posix() if twins > 1 else stem.relative_to(meshes).as_posix()
-
-
-def robot_of(p, meshes):
-    return p.relative_to(meshes).parts[0]
-
-
-def sample(files, meshes, n):
-    """A fixed sample of n meshes with every robot represented: robots in turn, each robot's meshes
-    in name order, until n are taken."""
-    by_robot = {}
-    for p in files:
-        by_robot.setdefault(robot_of(p, meshes), []).append(p)
-    out, k = [], 0
-    while len(out) < min(n, len(files)):
-        for r in sorted(by_robot):
-            if k < len(by_robot[r]) and len(out) < n:
-                out.append(by_robot[r][k])
-        k += 1
-    return sorted(out)
-
-
-# ---- ours, through the batch's child process (auto preprocessing), then the certificate ---------
-def run_ours(src, out_dir, timeout):
-    from pymeshlab_acd import batch
-    opts = dict(batch.DEFAULTS, max_hull_vertices=0, formats=["obj"], timeout=timeout)   # the defaults' tau and cuts
-    t0 = time.perf_counter()
-    rec = batch.run_child(src, out_dir, opts)
-    rec["wall"] = time.perf_counter() - t0
-    return rec
-
-
-def certificate(out_dir, tau_abs):
-    """Worst part hull distance / tau (a distance attained) and the parts whose hull is not proven within
-    tau + 1%, over the exported parts, measured independently."""
-    import numpy as np
-    import pymeshlab
-    from hull_reach import hull_reach
-    worst, over = 0.0, 0
-    for ply in sorted((pathlib.Path(out_dir) / "parts").glob("*.ply")):
-        ms = pymeshlab.MeshSet()
-        ms.load_new_mesh(str(ply))
-        V, F = ms.current_mesh().vertex_matrix(), ms.current_mesh().face_matrix()
-        lower, upper = hull_reach(V, F, slack=0.01 * tau_abs, limit=tau_abs)
-        if lower <= 1.01 * tau_abs < upper:   # a point just past tau: settle "within tau + 1%" to 0.1% of tau
-            lower2, upper = hull_reach(V, F, slack=0.001 * tau_abs, limit=1.009 * tau_abs)
-            lower = max(lower, lower2)
-        worst = max(worst, lower / tau_abs)   # attained; "over" counts the proven upper bounds
-        over += upper > 1.01 * tau_abs
-    return worst, over
 
 
 def hulls_obj(out_dir, dst):
@@ -166,8 +76,8 @@ def main():
     if args.quick:   # ours always runs afresh on the subset (the check of the code at hand), in its own store
         stores["ours"] = out / "robots-ours-quick.json"
         stores["ours"].unlink(missing_ok=True)
-    for g, f in stores.items():   # a fresh checkout resumes from the rows published in docs/robots/
-        published = REPO / "docs" / "robots" / f.name
+    for g, f in stores.items():   # a fresh checkout resumes from the rows published in bench/results/robots/
+        published = REPO / "bench" / "results" / "robots" / f.name
         if not f.exists() and published.exists() and not args.fresh:
             f.write_text(published.read_text())
     done = {g: ([] if args.fresh and g in groups else json.loads(f.read_text()) if f.exists() else [])

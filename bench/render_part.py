@@ -1,5 +1,5 @@
 """Render a decomposed mesh for the README: the input beside its collision hulls, each hull in its own
-colour (matplotlib, no display needed). Usage: python3 scripts/render_part.py MESH OUT.png [TAU%]"""
+colour (matplotlib, no display needed). Usage: python3 bench/render_part.py MESH OUT.png [TAU%]"""
 import sys
 
 import matplotlib

@@ -1,5 +1,5 @@
 """Drop tests in MuJoCo and PyBullet for exported models (used by tests/test_export.py and
-scripts/sim_check.py): add a floor, lift the object so its lowest collision vertex is `height` above it
+bench/sim_check.py): add a floor, lift the object so its lowest collision vertex is `height` above it
 (optionally drop a ball onto it), simulate, and report where things come to rest."""
 import xml.etree.ElementTree as ET
 

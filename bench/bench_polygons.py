@@ -30,7 +30,7 @@ def write_poly(path, loop):
 
 def generated(folder):
     sys.path.insert(0, str(REPO / "tests"))
-    from test_polygon import comb, noisy_blob, star
+    from support.polygons import comb, noisy_blob, star
     out = []
     for name, loop in [("star 5", star()), ("star 24", star(24, 20, 12)), ("comb 12", comb(12) * 3),
                        ("noisy outline 452", noisy_blob())]:

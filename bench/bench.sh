@@ -1,13 +1,13 @@
 #!/usr/bin/env bash
-# Benchmark against CoACD, V-HACD 4 and CGAL's ACD (see scripts/bench.py --help); with --robots, the
-# robot corpus with the certificate and the peers on a sample (scripts/bench_robots.py); with --rotation,
-# the pose-dependence table instead (scripts/bench_rotation.py); with --polygons, the 2D table against
-# CGAL's Partition_2 (scripts/bench_polygons.py). Installs what it needs on top of
+# Benchmark against CoACD, V-HACD 4 and CGAL's ACD (see bench/bench.py --help); with --robots, the
+# robot corpus with the certificate and the peers on a sample (bench/bench_robots.py); with --rotation,
+# the pose-dependence table instead (bench/bench_rotation.py); with --polygons, the 2D table against
+# CGAL's Partition_2 (bench/bench_polygons.py). Installs what it needs on top of
 # scripts/setup.sh: the peers from PyPI and the C++ metric/peer tools.
 set -euo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
-bash "$here/setup.sh"
-source "$here/env.sh"
+bash "$here/../scripts/setup.sh"
+source "$here/../scripts/env.sh"
 python3 -m pip install -q "coacd==1.0.14" "vhacdx==0.1.1" "matplotlib>=3.7" 2>&1 | grep -v "running pip as the 'root'" || true
 if [ "${1:-}" = "--polygons" ]; then   # 2D: ours vs CGAL Partition_2 (no Python peers needed)
 	shift

@@ -4,9 +4,9 @@
 (acd_metrics, % of the box diagonal; outside / inside the solid where it is closed), the certificate
 (worst part hull / tau, measured independently) and the time, with CoACD 0.05's published row beside.
 
-    python3 scripts/study_settings.py --settings best:2:0,best:2:1,bisector:3:1 [--out out/study.jsonl]
+    python3 bench/study_settings.py --settings best:2:0,best:2:1,bisector:3:1 [--out out/study.jsonl]
 
-With the peers' published rows (docs/robots/robots-peers.json) it also prints, per setting, the
+With the peers' published rows (bench/results/robots/robots-peers.json) it also prints, per setting, the
 comparison with the peers that bench_robots' front() prints for the default setting.
 
 A setting is selection:tau:merge (merge 1 or 0), optionally followed by :wrap_alpha:wrap_offset (%);
@@ -24,7 +24,7 @@ import sys
 import tempfile
 
 REPO = pathlib.Path(__file__).resolve().parents[1]
-sys.path.insert(0, str(REPO / "scripts"))
+sys.path.insert(0, str(REPO / "bench"))
 sys.path.insert(0, str(REPO / "tests"))
 import bench  # noqa: E402
 import bench_robots as br  # noqa: E402
@@ -145,7 +145,7 @@ def main():
                 f.write(json.dumps(row) + "\n")
             print(json.dumps({k: row.get(k) for k in ("mesh", "setting", "hulls", "hull_error", "time", "worst")}),
                   flush=True)
-    summary(rows, settings, json.loads((REPO / "docs" / "robots" / "robots-peers.json").read_text()))
+    summary(rows, settings, json.loads((REPO / "bench" / "results" / "robots" / "robots-peers.json").read_text()))
 
 
 if __name__ == "__main__":

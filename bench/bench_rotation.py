@@ -2,11 +2,11 @@
 """Does the decomposition depend on the pose? Parts and hull error across random rotations.
 
 For the bunny and three shared meshes: ours over 10 rotations, CoACD and V-HACD 4 over 3 (they are
-slower), each rotated copy decomposed and scored by the same neutral tool as scripts/bench.py (hull
+slower), each rotated copy decomposed and scored by the same neutral tool as bench/bench.py (hull
 error of the union of hulls, as % of the rotated input's bounding-box diagonal). Prints min / max of
 the part count and hull error per method.
 
-    scripts/bench.sh --rotation        (installs what scripts/bench.sh installs, then runs this)
+    bench/bench.sh --rotation        (installs what bench/bench.sh installs, then runs this)
 Writes out/bench/rotation.md.
 """
 import json

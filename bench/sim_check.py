@@ -2,7 +2,7 @@
 """Load every model a batch exported (python -m pymeshlab_acd batch IN OUT) in MuJoCo (MJCF) and
 PyBullet (URDF), drop it onto a plane from 10% of its size, and print where it comes to rest.
 
-    python scripts/sim_check.py OUT_DIR [--seconds 12]
+    python bench/sim_check.py OUT_DIR [--seconds 12]
 """
 import argparse
 import json
@@ -13,7 +13,7 @@ import time
 import numpy as np
 
 sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[1] / "tests"))
-from simulators import drop_mujoco, drop_pybullet, hull_vertices  # noqa: E402
+from support.simulators import drop_mujoco, drop_pybullet, hull_vertices  # noqa: E402
 
 
 def main():

@@ -9,10 +9,10 @@ input solid (Monte Carlo, with its standard error). Wall time is the decompositi
 memory is the child's whole-process peak resident set (its VmHWM). For ours also the paper's
 concavity of the parts (the filter's max part concavity, fraction of the diagonal).
 
-    scripts/bench.sh                 whole corpus and the scaling table (about an hour on 2 cores)
-    scripts/bench.sh --quick         the bunny only, no scaling
-    scripts/bench.sh --quick --parts-before old/libfilter_acd.so   and that build's parts beside this one's
-    scripts/bench.sh --meshes cow spot --no-scaling
+    bench/bench.sh                 whole corpus and the scaling table (about an hour on 2 cores)
+    bench/bench.sh --quick         the bunny only, no scaling
+    bench/bench.sh --quick --parts-before old/libfilter_acd.so   and that build's parts beside this one's
+    bench/bench.sh --meshes cow spot --no-scaling
 Writes out/bench/bench.md and out/bench/bench.png.
 """
 import argparse
@@ -99,13 +99,8 @@ def read_obj(path):
 
 
 def write_hulls(path, hulls):
-    with open(path, "w") as f:
-        base = 1
-        for i, (V, F) in enumerate(hulls):
-            f.write(f"o hull_{i}\n")
-            f.writelines(f"v {x:.17g} {y:.17g} {z:.17g}\n" for x, y, z in V)
-            f.writelines(f"f {a + base} {b + base} {c + base}\n" for a, b, c in F)
-            base += len(V)
+    from pymeshlab_acd.export import write_obj_objects
+    write_obj_objects(path, hulls, "hull")
 
 
 # ---- one method run, inside a child process ----------------------------------------------------
@@ -384,7 +379,7 @@ def main():
     print(HEADER, flush=True)
     rows = bench_corpus(args, outdir)
     plot(rows, outdir / "bench.png")
-    md = [f"Benchmark of {started} on {machine}.", "", "Command: `scripts/bench.sh " + " ".join(sys.argv[1:]) + "`",
+    md = [f"Benchmark of {started} on {machine}.", "", "Command: `bench/bench.sh " + " ".join(sys.argv[1:]) + "`",
           "", HEADER] + [row_line(r) for r in rows]
     if not args.no_scaling:
         print("\n| faces | parts | time (s) | peak memory (MB) |\n|---|---|---|---|", flush=True)

@@ -1,0 +1,1 @@
+"""What the tests share: shapes and solids, independent measures, simulators, the robot corpus."""

@@ -1,0 +1,44 @@
+"""A decomposition checked as a partition, by code that shares nothing with the core: every part closed
+and 2-manifold, volumes adding up to the input's, no two parts overlapping, each part's concavity and hull
+distance within tau."""
+import numpy as np
+import pymeshlab
+
+from .meshes import add_mesh, hull_within, inside, interior_samples, is_closed_manifold, volume
+
+
+def parts_of(ms, ids):
+    return [(ms.mesh(i).vertex_matrix(), ms.mesh(i).face_matrix(), ms.mesh(i).label()) for i in ids]
+
+
+def check_partition(ms, src_id, ids, tau_abs=None, overlap_samples=0, seed=0, hull_check=True):
+    src = ms.mesh(src_id)
+    v0 = volume(src.vertex_matrix(), src.face_matrix())
+    parts = parts_of(ms, ids)
+    total = 0.0
+    for V, F, label in parts:
+        assert label.startswith("acd_")
+        assert is_closed_manifold(F), f"{label} is not closed and 2-manifold"
+        vol = volume(V, F)
+        assert vol > 0
+        total += vol
+        if tau_abs is not None:
+            assert remeasured_concavity(V, F) <= tau_abs * (1 + 1e-9), f"{label} exceeds tau"
+            if hull_check:
+                hull_within(V, F, tau_abs, label)
+    assert abs(total - v0) / v0 < 1e-6
+    if overlap_samples:
+        rng = np.random.default_rng(seed)
+        for i, (V, F, label) in enumerate(parts):
+            pts = interior_samples(V, F, overlap_samples, rng)
+            for j, (V2, F2, label2) in enumerate(parts):
+                if i != j and len(pts):
+                    # points well inside part i (not on a shared cap) must not be inside part j
+                    assert not inside(V2, F2, pts).any(), f"{label} overlaps {label2}"
+    return parts
+
+
+def remeasured_concavity(V, F):
+    m = pymeshlab.MeshSet()
+    add_mesh(m, V, F)
+    return m.compute_scalar_by_notch_concavity()["max_concavity"]
