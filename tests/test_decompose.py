@@ -122,7 +122,7 @@ def test_more_bad_input_gets_a_clear_error(ms, bad, match):
         return
     for f in (pymeshlab_acd.decompose, lambda m, **k: m.compute_scalar_by_notch_concavity()):
         with pytest.raises(pymeshlab.PyMeshLabException, match=match):
-            f(ms, tau=1.0)
+            f(ms, tau=1.0, preprocessing="none")
 
 
 def test_slightly_self_intersecting_meshes_decompose_with_a_warning(ms):
@@ -149,7 +149,7 @@ def test_bad_input_gets_a_clear_error(ms, bad):
     if bad == "open":
         add_mesh(ms, V, F[:-2])
         with pytest.raises(pymeshlab.PyMeshLabException, match="(?s)boundary edges.*preprocessing to 'auto'.*Close Holes"):
-            pymeshlab_acd.decompose(ms, tau=1.0)
+            pymeshlab_acd.decompose(ms, tau=1.0, preprocessing="none")
     elif bad == "nonmanifold":
         # two boxes sharing one edge: closed, but that edge has four faces
         A, FA = extrude([(0, 0), (1, 0), (1, 1), (0, 1)], 0, 1)
@@ -157,7 +157,7 @@ def test_bad_input_gets_a_clear_error(ms, bad):
         W, inv = np.unique(np.vstack([A, B]), axis=0, return_inverse=True)
         add_mesh(ms, W, inv.reshape(-1)[np.vstack([FA, FB + len(A)])])
         with pytest.raises(pymeshlab.PyMeshLabException, match="non-manifold edges"):
-            pymeshlab_acd.decompose(ms, tau=1.0)
+            pymeshlab_acd.decompose(ms, tau=1.0, preprocessing="none")
     else:
         add_mesh(ms, V, F)
         with pytest.raises(pymeshlab.PyMeshLabException, match="tau"):
@@ -251,7 +251,8 @@ def test_alpha_wrap_preprocessing_makes_dirty_input_decomposable(ms, dirt):
         m.generate_sampling_poisson_disk(samplenum=4000)
         ms.add_mesh(pymeshlab.Mesh(vertex_matrix=m.current_mesh().vertex_matrix()), "points")
     with pytest.raises(pymeshlab.PyMeshLabException):   # not a solid as it is
-        pymeshlab_acd.decompose(ms, tau=0.2, tau_unit="model_units", on_self_intersection="refuse")
+        pymeshlab_acd.decompose(ms, tau=0.2, tau_unit="model_units", on_self_intersection="refuse",
+                                preprocessing="none")
     res, ids = pymeshlab_acd.decompose(ms, tau=0.2, tau_unit="model_units", preprocessing="alpha_wrap",
                                        wrap_alpha=5.0, wrap_offset=0.2)
     assert res["alpha_wrapped"] and res["parts"] >= 2

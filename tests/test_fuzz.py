@@ -26,8 +26,8 @@ def drive(first, last, cache, results):
     here = pathlib.Path(__file__).resolve().parent
     i = first
     while i < last:
-        p = subprocess.Popen([sys.executable, str(here / "fuzz_cases.py"), "child", cache, str(i), str(last)],
-                             stdout=subprocess.PIPE, stderr=subprocess.DEVNULL, text=True)
+        p = subprocess.Popen([sys.executable, "-m", "support.fuzz_cases", "child", cache, str(i), str(last)],
+                             stdout=subprocess.PIPE, stderr=subprocess.DEVNULL, text=True, cwd=here)
         lines = queue.Queue()
         threading.Thread(target=lambda: ([lines.put(x) for x in p.stdout], lines.put(None)), daemon=True).start()
         current = None
@@ -78,4 +78,4 @@ def test_fuzz_bad_and_random_meshes(tmp_path):
     for i, r in list(bad.items())[:20]:
         print(f"  case {i} {fuzz_cases.case(i)}: {r}")
     assert len(results) == fuzz_cases.CASES
-    assert not bad, f"{len(bad)} cases crashed, hung or broke a check (replay: python tests/support/fuzz_cases.py run N)"
+    assert not bad, f"{len(bad)} cases crashed, hung or broke a check (replay: cd tests && python -m support.fuzz_cases run N)"

@@ -1,9 +1,9 @@
 """Generated bad and random inputs for the robustness fuzz test (tests/test_fuzz.py).
 
 A case is (base mesh, mutation, parameters), all derived from its index, so a failing case can be
-replayed alone:  python tests/support/fuzz_cases.py run CASE_INDEX
+replayed alone:  cd tests && python -m support.fuzz_cases run CASE_INDEX
 
-Run as `python fuzz_cases.py child CACHE FIRST LAST`, it processes cases FIRST..LAST-1 and prints one
+Run as `python -m support.fuzz_cases child CACHE FIRST LAST` (from tests/), it processes cases FIRST..LAST-1 and prints one
 line per case ("<i> ok <parts>" or "<i> error <message>" or "<i> violation <what>"), flushed, so the
 parent can tell which case a crash or hang happened in.
 """
@@ -180,6 +180,8 @@ def case(i):
         params.update(preprocessing="alpha_wrap", wrap_alpha=5.0, wrap_offset=0.5)
     elif i % 5 == 2:   # as given when valid, else wrapped
         params.update(preprocessing="auto", wrap_alpha=5.0, wrap_offset=0.5)
+    else:   # as given
+        params["preprocessing"] = "none"
     return BASES[b], MUTATIONS[m], s, params
 
 
@@ -199,7 +201,7 @@ def run_case(i, cache):
     try:   # the concavity filter takes the mesh as given, with no tau
         ms.compute_scalar_by_notch_concavity()
     except pymeshlab.PyMeshLabException as e:
-        as_given = allowed(i, with_tau=False) if "preprocessing" not in params else set(REFUSALS.get(how, {None}))
+        as_given = allowed(i, with_tau=False) if params["preprocessing"] == "none" else set(REFUSALS.get(how, {None}))
         if kind_of(str(e)) not in as_given:
             return "violation", f"notch concavity refused {how} as {kind_of(str(e))!r}: {' '.join(str(e).split())}"
     ms.set_current_mesh(0)
