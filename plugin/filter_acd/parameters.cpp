@@ -146,10 +146,12 @@ acd::DecomposeOptions decompose_options(const RichParameterList& par, double siz
 	o.hole_handling       = chosen<acd::HoleHandling>(par, opt("hole_handling"));
 	o.hole_order          = chosen<acd::HoleOrder>(par, opt("hole_order"));
 	o.time_limit_seconds  = par.getFloat("time_limit");
+	o.threads             = par.getInt("threads");
 	// The skeleton follows the cut tree, so its filter has no merge.
 	o.merge_parts         = par.hasParameter("merge_parts") && par.getBool("merge_parts");
 	if (o.max_parts < 0) throw MLException("max_parts must be 0 (no limit) or positive.");
 	if (o.time_limit_seconds < 0) throw MLException("time_limit must be 0 (no limit) or positive.");
+	if (o.threads < 0) throw MLException("threads must be 0 (every core) or positive.");
 	if (cb) o.progress = [cb](int pct, const char* msg) { return cb(pct, msg); };
 	return o;
 }

@@ -59,7 +59,7 @@ def cmd_decompose(a):
                   max_parts=a.max_parts, merge_parts=a.merge_parts, output_hulls=bool(a.hulls or a.out), max_hull_vertices=a.max_hull_vertices,
                   time_limit=a.time_limit, preprocessing=a.preprocessing, wrap_alpha=a.wrap_alpha,
                   wrap_offset=a.wrap_offset, on_self_intersection=a.on_self_intersection,
-                  hole_handling=a.hole_handling, hole_order=a.hole_order)
+                  hole_handling=a.hole_handling, hole_order=a.hole_order, threads=a.threads)
     t0 = time.perf_counter()
     with ProgressBar(ms, a.progress):
         res, ids = decompose(ms, with_tree=a.tree, **params)
@@ -173,7 +173,7 @@ def cmd_batch(a):
                         merge_parts=a.merge_parts, max_hull_vertices=a.max_hull_vertices, preprocessing=a.preprocessing,
                         wrap_alpha=a.wrap_alpha, wrap_offset=a.wrap_offset,
                         time_limit=a.time_limit, hole_handling=a.hole_handling, hole_order=a.hole_order,
-                        on_self_intersection=a.on_self_intersection, timeout=a.timeout, formats=fmt, scale=a.scale, density=a.density,
+                        on_self_intersection=a.on_self_intersection, threads=a.threads, timeout=a.timeout, formats=fmt, scale=a.scale, density=a.density,
                         save_tree=a.save_tree)
     w = max([len(pathlib.Path(r["file"]).name) for r in records] + [4])
     print(f"{'file':<{w}}  {'status':<11} {'parts':>5} {'concavity %':>11} {'hulls/vol':>9} {'time s':>7}  "
@@ -260,7 +260,7 @@ def main(argv=None):
     d.add_argument("--out", help="folder for hulls.obj (one object per hull), parts.obj and summary.json")
     add_arguments(d, "tau", "tau_unit", "cut_plane_selection", "max_parts", "merge_parts", "max_hull_vertices",
                   "preprocessing", "wrap_alpha", "wrap_offset", "time_limit", "hole_handling", "hole_order",
-                  "on_self_intersection")
+                  "on_self_intersection", "threads")
     d.add_argument("--hulls", action="store_true", help="also add each part's hull as a layer (always with --out)")
     d.add_argument("--part-files", action="store_true", help="also write every part and hull as its own OBJ")
     d.add_argument("--tree", action="store_true", help="also write the cut tree as tree.json")
@@ -286,7 +286,7 @@ def main(argv=None):
                    "'{\"pip\": [\"/shared/pymeshlab_acd-0.1.0-py3-none-any.whl\"]}'")
     add_arguments(b, "tau", "tau_unit", "cut_plane_selection", "max_parts", "merge_parts", "max_hull_vertices",
                   "preprocessing", "wrap_alpha", "wrap_offset", "time_limit", "hole_handling", "hole_order",
-                  "on_self_intersection")
+                  "on_self_intersection", "threads")
     b.add_argument("--timeout", type=float, default=BATCH["timeout"],
                    help="per mesh process, killed after (s; 0: none)")
     b.add_argument("--formats", default=",".join(BATCH["formats"]), help="collision hull files: obj, stl or both")

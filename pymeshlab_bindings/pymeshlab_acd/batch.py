@@ -25,8 +25,10 @@ MESH_EXTENSIONS = {".obj", ".ply", ".stl", ".off", ".3ds", ".dae", ".wrl", ".glt
 DEFAULTS = dict(options.DEFAULTS, timeout=1800.0, formats=["obj", "stl"], scale=1.0, density=1000.0, save_tree=False)
 
 # The options that change a mesh's outputs (a rerun with other values redoes the mesh).
+# threads is not one of them: the parts are the same for any count.
 _OUTPUT_KEYS = ("tau", "tau_unit", "cut_plane_selection", "max_parts", "merge_parts", "max_hull_vertices", "preprocessing",
-                "wrap_alpha", "wrap_offset", "time_limit", "formats", "scale", "density", "save_tree")
+                "wrap_alpha", "wrap_offset", "time_limit", "hole_handling", "hole_order", "on_self_intersection",
+                "formats", "scale", "density", "save_tree")
 
 
 SUMMARY_FIELDS = ("file", "status", "parts", "max_concavity", "max_concavity_pct", "hull_volume_ratio",
@@ -70,7 +72,7 @@ def decompose_file(src, out_dir, opts):
                   max_parts=opts["max_parts"], merge_parts=opts["merge_parts"], output_hulls=True,
                   max_hull_vertices=opts["max_hull_vertices"], time_limit=opts["time_limit"],
                   wrap_offset=opts["wrap_offset"], hole_handling=opts["hole_handling"], hole_order=opts["hole_order"],
-                  on_self_intersection=opts["on_self_intersection"])
+                  on_self_intersection=opts["on_self_intersection"], threads=opts["threads"])
 
     # The filter prepares the mesh by the core's one policy (preprocessing auto: as given, welded or
     # wrapped, and a solid that crosses itself wrapped when its parts as given fall short of tau).
@@ -232,6 +234,8 @@ def run_batch(in_dir, out_dir, workers=1, ray_address=None, ray_runtime_env=None
     if unknown:
         raise ValueError("unknown batch options: " + ", ".join(sorted(unknown)))
     opts.update(options)
+    if not opts["threads"]:   # each mesh decomposed at once gets its share of the cores, not all of them
+        opts["threads"] = max(1, (os.cpu_count() or 1) // max(1, workers))
     if not opts["tau"] > 0:
         raise ValueError(f"tau must be positive (got {opts['tau']})")
     out_root = pathlib.Path(out_dir)

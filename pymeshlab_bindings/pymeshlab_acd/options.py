@@ -16,6 +16,7 @@ DEFAULTS = dict(
     hole_handling="best_plane",     # cavities: best_plane | principal_plane | keep_cavities
     hole_order="first",             # cavities before notches (the paper) | by_concavity
     on_self_intersection="warn",    # warn | refuse
+    threads=0,                      # threads one decomposition may use; 0: every core (same parts for any)
 )
 
 import argparse
@@ -38,6 +39,8 @@ HELP = dict(
     hole_handling="how cavities (closed inner shells) are resolved",
     hole_order="cut cavities before notches (the paper) or in turn by concavity",
     on_self_intersection="a mesh that crosses itself: decompose with a warning, or refuse",
+    threads="threads one decomposition may use (0: every core; a batch gives each mesh its share of them); "
+            "the parts are the same for any count",
 )
 
 import functools

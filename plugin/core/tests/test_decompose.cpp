@@ -1,8 +1,13 @@
 #include "acd/decompose3/decompose.h"
+#include "acd/mesh/parallel.h"
 #include "acd/mesh/measures.h"
 #include "acd/solid/solid.h"
 #include "shapes.h"
 #include "check.h"
+
+#include <mutex>
+#include <set>
+#include <thread>
 
 using namespace acd;
 
@@ -93,4 +98,48 @@ TEST_CASE("min section cuts the neck")
 	CHECK(std::abs(bis.nodes[0].plane.n.z()) < 0.99);   // the test tells the two apart
 	check_partition(spindle, neck);
 	for (int i : neck.leaves()) CHECK(neck.nodes[i].concavity <= 0.05);
+}
+
+TEST_CASE("parallel_for runs within the thread budget its caller grants, and nested loops share it")
+{
+	std::mutex                  m;
+	std::set<std::thread::id>   outer, inner;
+	{
+		const ThreadLimit one(1);
+		parallel_for(8, [&](size_t) {
+			std::lock_guard<std::mutex> lock(m);
+			outer.insert(std::this_thread::get_id());
+		});
+	}
+	CHECK(outer == std::set<std::thread::id>{std::this_thread::get_id()});
+	{
+		const ThreadLimit two(2);
+		parallel_for(2, [&](size_t) {
+			CHECK(available_threads() == 1);   // each of the two workers has one thread to nest with
+			parallel_for(4, [&](size_t) {
+				std::lock_guard<std::mutex> lock(m);
+				inner.insert(std::this_thread::get_id());
+			});
+		});
+	}
+	CHECK(inner.size() <= 2);
+	CHECK(thread_budget() == 0);   // restored
+}
+
+TEST_CASE("the same parts for 1, 2 and 3 threads")
+{
+	const TriMesh m = shapes::torus(2.0, 0.5, 32, 12);
+	std::vector<std::vector<Vec3>> first;
+	for (int threads : {1, 2, 3}) {
+		DecomposeOptions o;
+		o.tau                 = 0.1;
+		o.threads             = threads;
+		o.cut_plane_selection = CutPlaneSelection::Best;
+		const Decomposition d = decompose(make_solid(m), o);
+		std::vector<std::vector<Vec3>> parts;
+		for (int i : d.parts()) parts.push_back(d.nodes[i].mesh.V);
+		CHECK(parts.size() > 2);
+		if (first.empty()) first = parts;
+		CHECK(parts == first);
+	}
 }

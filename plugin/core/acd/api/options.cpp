@@ -61,6 +61,9 @@ std::vector<Option> make_table()
 		 {{"warn", 0, "decompose anyway and say so in the log and result (slight crossings, common in scans, are "
 		              "harmless; a cut that would make an open part fails with a message instead)"},
 		  {"refuse", 1, "stop with an error"}}},
+		{"threads", O::Integer, 0, "Threads",
+		 "Threads the decomposition may use (0 = every core). The parts are the same for any count; a batch of "
+		 "several meshes at once gives each its share.", {}},
 		{"time_limit", O::Number, 0, "Time limit (s)",
 		 "Stop cutting after this many seconds (0 = no limit) and return the parts found so far; merging "
 		 "(merge_parts) shares the same limit and stops with the parts it has merged.", {}},

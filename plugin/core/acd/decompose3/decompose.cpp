@@ -614,7 +614,9 @@ Decomposition decompose(const Solid& solid, const DecomposeOptions& opt)
 	if (!(opt.tau > 0) || !std::isfinite(opt.tau))
 		throw Error(Error::InvalidOption, "tau must be a positive, finite length.");
 	if (opt.max_parts < 0) throw Error(Error::InvalidOption, "max_parts must be 0 (unbounded) or positive.");
-	const auto start = std::chrono::steady_clock::now();
+	if (opt.threads < 0) throw Error(Error::InvalidOption, "threads must be 0 (every core) or positive.");
+	const auto        start = std::chrono::steady_clock::now();
+	const ThreadLimit threads(opt.threads);
 
 	// Work centred and at unit size: a mesh far from the origin (CAD, map coordinates) would
 	// otherwise carry rounding errors hundreds of times larger than the same mesh at the origin,

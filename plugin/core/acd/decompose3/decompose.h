@@ -23,6 +23,7 @@ struct DecomposeOptions
 	HoleOrder         hole_order = HoleOrder::First;
 	double            time_limit_seconds = 0; // 0 = none; bounds the cuts and the merge after them
 	bool              merge_parts = true;     // merge neighbouring parts while their union is tau-convex (merge.h)
+	int               threads = 0;            // threads the decomposition may use (0: every core); the parts do not depend on it
 	// Called with a percentage and a short status; return false to cancel (throws Error(Cancelled)).
 	std::function<bool(int, const char*)> progress;
 };

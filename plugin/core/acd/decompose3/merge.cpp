@@ -328,7 +328,7 @@ private:
 	// heard between batches) and queue those that pass.
 	void score(const std::vector<std::pair<int, int>>& pairs)
 	{
-		const size_t batch = 4 * std::max(1u, std::thread::hardware_concurrency());
+		const size_t batch = 4 * available_threads();
 		for (size_t from = 0; from < pairs.size() && !out_of_time(); from += batch) {
 			const size_t                      n = std::min(batch, pairs.size() - from);
 			std::vector<std::optional<Group>> u(n);
