@@ -11,7 +11,7 @@
 #include "parameters.h"
 
 #include <acd/decompose3/decompose.h>
-#include "acd/structure/level_of_detail.h"
+#include <acd/structure/level_of_detail.h>
 #include <acd/solid/solid.h>
 
 namespace {

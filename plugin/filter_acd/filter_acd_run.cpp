@@ -9,7 +9,7 @@
 #include "parameters.h"
 
 #include <acd/decompose3/decompose.h>
-#include "acd/structure/level_of_detail.h"
+#include <acd/structure/level_of_detail.h>
 #include <acd/hull/hull_union.h>
 #include <acd/polygon/polygon.h>
 #include <acd/structure/skeleton.h>
