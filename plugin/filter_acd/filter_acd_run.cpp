@@ -177,13 +177,14 @@ FilterACD::Run FilterACD::runDecomposition(const RichParameterList& par, MeshMod
 	const acd::PrepareOptions prep = acdml::prepare_options(par);
 	if (cb && prep.mode != acd::Preprocessing::None)
 		cb(0, prep.mode == acd::Preprocessing::AlphaWrap ? "Alpha wrapping the input..." : "Checking the input (as given, welded or wrapped)...");
-	// tau may be a share of the size: the prepared solid's.
-	acd::MeshDecomposition md = acd::decompose_mesh(raw, prep, [&](const acd::PreparedSolid& p) {
+	// tau may be a share of the size: the prepared solid's (the last one prepared is the one decomposed).
+	double                 size = 0;
+	acd::MeshDecomposition md   = acd::decompose_mesh(raw, prep, [&](const acd::PreparedSolid& p) {
 		log_prepared(p);
-		return acdml::decompose_options(par, acd::enclosing_diameter(p.solid.mesh.V), cb);
+		size = acd::enclosing_diameter(p.solid.mesh.V);
+		return acdml::decompose_options(par, size, cb);
 	});
 	if (!md.fallback.empty()) log("Decomposed as given, %s: alpha wrapped instead.", md.fallback.c_str());
-	const double size = acd::enclosing_diameter(md.prepared.solid.mesh.V);
 	return {std::move(md.prepared), md.options, size, std::move(md.d), md.fallback};
 }
 

@@ -86,13 +86,12 @@ def decompose_file(src, out_dir, opts):
     parts = [i for i in ids if i not in hulls]
     vol = mass_properties(*merged_layers(ms, parts))[0]      # the solid decomposed (the wrap, if wrapped)
     hull_vol = sum(mass_properties(ms.mesh(i).vertex_matrix(), ms.mesh(i).face_matrix())[0] for i in hulls)
-    a = dict(ratio=hull_vol / vol, tree=tree)
     pre = ("none", f"welded {res['welded_vertices']} vertices", f"alpha_wrap {res['wrap_alpha_used']:.3g}%")[
         res["preprocessing_done"]]
     note = ("wrapped: as given, it intersects itself and its parts fell short of tau or a cut opened a part"
             if res["self_crossing_wrapped"] else _not_as_given(res))
-    if opts["save_tree"]:   # the chosen attempt's tree, for coarser levels later
-        a["tree"].rename(pathlib.Path(out_dir) / "tree.json")
+    if opts["save_tree"]:   # for coarser levels later
+        tree.rename(pathlib.Path(out_dir) / "tree.json")
     written = export_decomposition(ms, source, parts, hulls, out_dir, name=pathlib.Path(src).stem,
                                    formats=tuple(opts["formats"]), scale=opts["scale"], density=opts["density"])
     m = ms.mesh(source)
@@ -101,7 +100,7 @@ def decompose_file(src, out_dir, opts):
                tau_model_units=res["tau_model_units"], max_hull_distance=res["max_hull_distance"],
                tau_convex=res["tau_convex"],
                max_concavity_pct=100.0 * res["max_concavity"] / diag if diag > 0 else 0.0,
-               hull_volume_ratio=a["ratio"], preprocessing=pre, faces=ms.mesh(source).face_number(),
+               hull_volume_ratio=hull_vol / vol, preprocessing=pre, faces=ms.mesh(source).face_number(),
                time=time.perf_counter() - t0, error=note, files=written, options_key=options_key(opts),
                worker=f"{socket.gethostname()}:{os.getpid()}", max_parts_reached=res["max_parts_reached"],
                time_limit_reached=res.get("time_limit_reached", False))

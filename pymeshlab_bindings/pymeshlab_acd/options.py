@@ -75,6 +75,6 @@ def add_arguments(parser, *names):
             kw["choices"] = choices(name)
         elif isinstance(default, bool):
             kw["action"] = argparse.BooleanOptionalAction
-        elif not isinstance(default, str):
+        else:
             kw["type"] = type(default)
         parser.add_argument("--" + name.replace("_", "-"), **kw)
