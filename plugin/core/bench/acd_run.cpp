@@ -90,6 +90,9 @@ int main(int argc, char** argv)
 		            d.parts().size(), d.max_part_concavity(), secs);
 		std::printf("tau_convex %d  max hull distance %.6g  merges %d  time limit %d\n", d.tau_convex(),
 		            d.max_hull_distance(), d.merges, d.time_limit_reached);
+		if (d.proxy_searches > 0)
+			std::printf("proxy: %d faces, %.3g tau from the solid; %d searches, %d parts searched again\n", d.proxy_faces,
+			            d.proxy_distance / d.tau, d.proxy_searches, d.proxy_retries);
 		if (std::getenv("ACD_RUN_TREE")) print_cuts(d);
 		diagnose(d);
 		if (const char* dump = std::getenv("ACD_RUN_PARTS"))   // every part, one object each

@@ -2,6 +2,7 @@
 #include "acd/decompose3/cut_planes.h"
 #include "acd/hull/hull_reach.h"
 #include "acd/decompose3/merge.h"
+#include "acd/decompose3/proxy_search.h"
 #include "acd/mesh/parallel.h"
 #include "acd/recursion/recursion.h"
 #include "acd/mesh/measures.h"
@@ -590,6 +591,7 @@ private:
 		SplitOutcome best     = std::move(c.trials[c.pick].so);
 		D.nodes[id].has_plane = true;
 		D.nodes[id].plane     = best.plane;
+		D.nodes[id].cut_at    = c.notch;
 		D.nodes[id].hole_cut  = c.hole >= 0;
 		D.hole_cuts += c.hole >= 0;
 		const std::string path = D.nodes[id].path;
@@ -609,13 +611,29 @@ private:
 
 } // namespace
 
+Decomposition cut_tree(const Solid& solid, const DecomposeOptions& opt)
+{
+	return Driver(opt).run(solid);
+}
+
+void measure_node(Node& n, bool keep_cavities, double tau)
+{
+	const Measured ms(n.mesh, keep_cavities, tau);
+	n.concavity           = ms.rep.max_concavity;
+	n.hull_distance       = ms.rep.hull_reach;
+	n.hull_distance_bound = ms.rep.hull_reach_bound;
+	n.volume              = signed_volume(n.mesh);
+	n.notch_count         = ms.rep.notches;
+	n.cavities            = (int) ms.cavities.size();
+	n.notch               = ms.rep.max_vertex >= 0 ? ms.surface(n.mesh).V[ms.rep.max_vertex] : Vec3::Zero();
+}
+
 Decomposition decompose(const Solid& solid, const DecomposeOptions& opt)
 {
 	if (!(opt.tau > 0) || !std::isfinite(opt.tau))
 		throw Error(Error::InvalidOption, "tau must be a positive, finite length.");
 	if (opt.max_parts < 0) throw Error(Error::InvalidOption, "max_parts must be 0 (unbounded) or positive.");
 	if (opt.threads < 0) throw Error(Error::InvalidOption, "threads must be 0 (every core) or positive.");
-	const auto        start = std::chrono::steady_clock::now();
 	const ThreadLimit threads(opt.threads);
 
 	// Work centred and at unit size: a mesh far from the origin (CAD, map coordinates) would
@@ -630,14 +648,9 @@ Decomposition decompose(const Solid& solid, const DecomposeOptions& opt)
 	unit.volume /= s * s * s;
 	DecomposeOptions o = opt;
 	o.tau /= s;
-	Decomposition D = Driver(o).run(unit);
-	if (o.merge_parts) {
-		// The time limit bounds the cuts and the merge together; the merge gets what the cuts left.
-		const double spent = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-		const double left  = o.time_limit_seconds > 0 ? std::max(o.time_limit_seconds - spent, 1e-9) : 0;
-		merge_parts(D, o.tau, o.progress, left);
-	}
+	Decomposition D = search(unit, o);
 	D.tau = opt.tau;
+	D.proxy_distance *= s;
 	for (Node& n : D.nodes) {
 		for (Vec3& p : n.mesh.V) p = p * s + c;
 		n.concavity *= s;
@@ -645,6 +658,7 @@ Decomposition decompose(const Solid& solid, const DecomposeOptions& opt)
 		n.hull_distance_bound *= s;
 		n.volume *= s * s * s;
 		n.notch = n.notch * s + c;
+		n.cut_at = n.cut_at * s + c;
 		n.plane.d = n.plane.d * s + n.plane.n.dot(c);
 	}
 	return D;

@@ -41,6 +41,7 @@ struct Node
 	Vec3        notch = Vec3::Zero();   // most concave notch (meaningful if concavity > 0)
 	bool        has_plane = false;      // internal node: the cut
 	Plane       plane;
+	Vec3        cut_at = Vec3::Zero();  // the point whose cross-section region the cut opened (separate's notch)
 	bool        uncut = false;     // leaf above tau because no plane split it (reported)
 	bool        solids = false;    // split into its disjoint solids (first one | the rest), not by a plane
 	int         cavities = 0;      // closed inner shells in this node's solid
@@ -62,6 +63,10 @@ struct Decomposition
 	int               films_dropped = 0;   // zero-thickness films cut off parts no plane could split
 	double            film_volume = 0;     // the volume they held (rounding: near 0)
 	int               merges = 0;          // neighbouring parts merged after the cuts
+	int               proxy_searches = 0;  // searches run on a simplified copy (proxy_search.h)
+	int               proxy_retries = 0;   // parts whose certificate failed on the original and were searched again
+	int               proxy_faces = 0;     // the first proxy's faces (0: searched on the solid itself)
+	double            proxy_distance = 0;  // its distance to the solid, measured (model units)
 	bool              merge_time_limit_reached = false;   // merging stopped by the time limit (parts still certified)
 	// The cut tree's leaves in a stable order (by tree path).
 	std::vector<int> leaves() const;
@@ -84,5 +89,10 @@ inline bool certified(const Node& n, double tau)
 }
 
 Decomposition decompose(const Solid& solid, const DecomposeOptions& options);
+
+// decompose()'s stages, for the proxy search (proxy_search.h). The cut tree of a solid centred and at
+// unit size (no merge); and a node's measures from its mesh, as the cuts take them.
+Decomposition cut_tree(const Solid& solid, const DecomposeOptions& options);
+void          measure_node(Node& n, bool keep_cavities, double tau);
 
 } // namespace acd

@@ -10,24 +10,28 @@
 #include <cmath>
 #include <numeric>
 #include <string>
-#include <unordered_map>
+#include <climits>
 
 namespace acd {
 
 namespace {
 
-struct EdgeKey
+// Directed edges (a, b) as one sortable key, with the face that holds them: sorted arrays instead of
+// hash maps keep the checks of a mesh with millions of faces to a fraction of a second.
+using EdgeKey = unsigned long long;
+EdgeKey edge_key(int a, int b)
 {
-	int a, b;
-	bool operator==(const EdgeKey& o) const { return a == o.a && b == o.b; }
-};
-struct EdgeHash
+	return (EdgeKey) (unsigned) a << 32 | (unsigned) b;
+}
+std::vector<std::pair<EdgeKey, int>> sorted_directed_edges(const std::vector<Tri>& F)
 {
-	size_t operator()(const EdgeKey& e) const
-	{
-		return std::hash<long long>()((static_cast<long long>(e.a) << 32) ^ static_cast<unsigned>(e.b));
-	}
-};
+	std::vector<std::pair<EdgeKey, int>> e;
+	e.reserve(F.size() * 3);
+	for (int f = 0; f < (int) F.size(); ++f)
+		for (int k = 0; k < 3; ++k) e.push_back({edge_key(F[f][k], F[f][(k + 1) % 3]), f});
+	std::sort(e.begin(), e.end());
+	return e;
+}
 
 [[noreturn]] void invalid(const std::string& msg, Error::Code code = Error::Unspecified, long count = 0)
 {
@@ -146,18 +150,23 @@ void checked_faces(const TriMesh& in, const std::vector<int>& remap, Solid& s)
 // Edge use: each undirected edge used by exactly two faces, once in each direction.
 void check_edges(const TriMesh& m)
 {
-	std::unordered_map<EdgeKey, int, EdgeHash> directed;
-	directed.reserve(m.F.size() * 3);
-	for (const Tri& t : m.F)
-		for (int k = 0; k < 3; ++k) ++directed[EdgeKey{t[k], t[(k + 1) % 3]}];
+	const std::vector<std::pair<EdgeKey, int>> directed = sorted_directed_edges(m.F);
+	const auto uses = [&](EdgeKey k) {
+		const auto lo = std::lower_bound(directed.begin(), directed.end(), std::make_pair(k, INT_MIN));
+		const auto hi = std::upper_bound(lo, directed.end(), std::make_pair(k, INT_MAX));
+		return (int) (hi - lo);
+	};
 	long boundary = 0, nonmanifold = 0, misoriented = 0;
-	for (const auto& [e, n] : directed) {
-		auto it    = directed.find(EdgeKey{e.b, e.a});
-		int  back  = it == directed.end() ? 0 : it->second;
-		int  total = n + back;
+	for (size_t i = 0; i < directed.size();) {
+		const EdgeKey e = directed[i].first;
+		size_t        j = i;
+		while (j < directed.size() && directed[j].first == e) ++j;
+		const int n = (int) (j - i), a = (int) (e >> 32), b = (int) (e & 0xffffffffu);
+		i           = j;
+		const int total = n + uses(edge_key(b, a));
 		if (total == 1) ++boundary;
 		else if (total > 2) {
-			if (e.a < e.b) ++nonmanifold;
+			if (a < b) ++nonmanifold;
 		}
 		else if (n == 2) ++misoriented;   // both uses in the same direction
 	}
@@ -182,10 +191,7 @@ void split_vertex_fans(Solid& s)
 {
 	const std::vector<Tri> orig = s.mesh.F;
 	const int              nf   = (int) orig.size();
-	std::unordered_map<EdgeKey, int, EdgeHash> face_of;   // directed edge -> its face
-	face_of.reserve(nf * 3);
-	for (int f = 0; f < nf; ++f)
-		for (int k = 0; k < 3; ++k) face_of[EdgeKey{orig[f][k], orig[f][(k + 1) % 3]}] = f;
+	const std::vector<std::pair<EdgeKey, int>> face_of = sorted_directed_edges(orig);   // directed edge -> its face
 	std::vector<char> seen(nf * 3, 0);
 	std::vector<char> has_fan(s.mesh.V.size(), 0);
 	for (int f = 0; f < nf; ++f)
@@ -206,8 +212,8 @@ void split_vertex_fans(Solid& s)
 				s.mesh.F[cf][ck]  = target;
 				// this face holds the directed edge (prev -> v); the next face holds (v -> prev)
 				const int prev = orig[cf][(ck + 2) % 3];
-				auto      it   = face_of.find(EdgeKey{v, prev});
-				if (it == face_of.end()) break;
+				const auto it = std::lower_bound(face_of.begin(), face_of.end(), std::make_pair(edge_key(v, prev), INT_MIN));
+				if (it == face_of.end() || it->first != edge_key(v, prev)) break;
 				cf = it->second;
 				ck = 0;
 				while (orig[cf][ck] != v) ++ck;

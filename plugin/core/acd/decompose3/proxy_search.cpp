@@ -1,0 +1,369 @@
+// The search on a proxy (proxy_search.h): decimate, cut the proxy, replay its cuts on the solid, certify
+// every part on the solid, search the parts that fail again on a finer proxy or as they are.
+#include "acd/decompose3/proxy_search.h"
+#include "acd/decompose3/merge.h"
+#include "acd/mesh/decimate.h"
+#include "acd/mesh/measures.h"
+#include "acd/mesh/parallel.h"
+#include "acd/solid/glue.h"
+#include "acd/solid/separate.h"
+#include "acd/solid/solid.h"
+
+#include <CGAL/AABB_traits_3.h>
+#include <CGAL/AABB_tree.h>
+#include <CGAL/AABB_triangle_primitive_3.h>
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+
+#include <algorithm>
+#include <chrono>
+#include <map>
+#include <optional>
+
+namespace acd {
+
+namespace {
+
+using K         = CGAL::Exact_predicates_inexact_constructions_kernel;
+using Triangles = std::vector<K::Triangle_3>;
+using AABB      = CGAL::AABB_tree<CGAL::AABB_traits_3<K, CGAL::AABB_triangle_primitive_3<K, Triangles::const_iterator>>>;
+
+constexpr size_t kDistanceSamples = 200000;   // the solid's vertices the proxy's distance is measured at
+
+// How far the solid's surface lies from the proxy's: the largest distance from the solid's vertices
+// (every one, or evenly spaced ones on a big solid) to the proxy.
+double distance_to(const TriMesh& proxy, const TriMesh& solid)
+{
+	Triangles tris;
+	for (const Tri& t : proxy.F) {
+		const auto p = [&](int k) { return K::Point_3(proxy.V[t[k]].x(), proxy.V[t[k]].y(), proxy.V[t[k]].z()); };
+		tris.emplace_back(p(0), p(1), p(2));
+	}
+	AABB tree(tris.begin(), tris.end());
+	tree.accelerate_distance_queries();
+	const size_t        step = std::max<size_t>(1, solid.V.size() / kDistanceSamples);
+	const size_t        n    = (solid.V.size() + step - 1) / step;
+	std::vector<double> d(n, 0);
+	parallel_for((n + 4095) / 4096, [&](size_t c) {
+		for (size_t i = c * 4096; i < std::min(n, (c + 1) * 4096); ++i) {
+			const Vec3& v = solid.V[i * step];
+			d[i]          = tree.squared_distance(K::Point_3(v.x(), v.y(), v.z()));
+		}
+	});
+	return std::sqrt(*std::max_element(d.begin(), d.end()));
+}
+
+struct Proxy
+{
+	Solid  solid;
+	double distance = 0;
+};
+
+// The solid decimated to about `faces`, if that is a clean solid (closed, no crossing) within `widest`
+// of it and clearly coarser than it.
+std::optional<Proxy> make_proxy(const TriMesh& mesh, int faces, double error, double widest)
+{
+	Decimated d = decimate(mesh, faces, error);
+	if (2 * d.mesh.F.size() > mesh.F.size()) return std::nullopt;
+	Proxy p;
+	try {
+		p.solid = make_solid(d.mesh);
+	}
+	catch (const Error&) {
+		return std::nullopt;
+	}
+	if (p.solid.self_intersections > 0) return std::nullopt;
+	p.distance = distance_to(p.solid.mesh, mesh);
+	if (!(p.distance <= widest)) return std::nullopt;
+	return p;
+}
+
+// The solids of `mesh` split as a proxy's node split its own: the solid nearest to the proxy's first
+// child (by centroid) first, the rest second.
+bool split_solids(const TriMesh& mesh, const TriMesh& first, std::array<TriMesh, 2>& parts)
+{
+	std::vector<TriMesh> solids = connected_solids(mesh);
+	if (solids.size() < 2) return false;
+	const auto centroid = [](const TriMesh& m) {
+		Vec3 c = Vec3::Zero();
+		for (const Vec3& p : m.V) c += p;
+		return Vec3(c / (double) std::max<size_t>(1, m.V.size()));
+	};
+	const Vec3 target = centroid(first);
+	size_t     pick   = 0;
+	for (size_t k = 1; k < solids.size(); ++k)
+		if ((centroid(solids[k]) - target).norm() < (centroid(solids[pick]) - target).norm()) pick = k;
+	parts = {std::move(solids[pick]), TriMesh()};
+	for (size_t k = 0; k < solids.size(); ++k)
+		if (k != pick) append(parts[1], solids[k]);
+	return true;
+}
+
+class ProxySearch
+{
+public:
+	ProxySearch(const DecomposeOptions& o, const ProxySettings& ps)
+	    : o(o), ps(ps), keep(o.hole_handling == HoleHandling::KeepCavities), start(std::chrono::steady_clock::now())
+	{
+	}
+
+	// The proxy's search and merge, replayed and certified on the solid, from the root down.
+	Decomposition run(const Solid& solid)
+	{
+		D.tau = o.tau;
+		Node root;
+		root.path = "0";
+		root.mesh = solid.mesh;
+		D.nodes.push_back(std::move(root));
+		search_node(0, 0, o.merge_parts);
+		return D;
+	}
+
+private:
+	const DecomposeOptions&                     o;
+	const ProxySettings&                        ps;
+	const bool                                  keep;
+	const std::chrono::steady_clock::time_point start;
+	Decomposition                               D;
+
+	// The time limit's rest (0: none).
+	double left() const
+	{
+		if (!(o.time_limit_seconds > 0)) return 0;
+		return std::max(o.time_limit_seconds - std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 1e-9);
+	}
+
+	bool needs_search(const Node& n) const { return !certified(n, o.tau) || (!keep && n.cavities > 0); }
+
+	// Leaf `at` searched on the coarsest proxy from `level` on that is clean and near enough, else as it
+	// is: the proxy cut (and merged), its cuts replayed on the solid, its merged parts united on the
+	// solid, every part certified on the solid, and the parts that fail searched again.
+	void search_node(int at, int level, bool merge)
+	{
+		std::optional<Proxy> px;
+		for (; level < ps.levels && !px; ++level) {
+			const int faces = ps.faces << (2 * level);
+			if ((int) D.nodes[at].mesh.F.size() <= std::max(ps.above, 2 * faces)) break;
+			px = make_proxy(D.nodes[at].mesh, faces, ps.error * o.tau, ps.widest * o.tau);
+		}
+		if (!px) return search_as_is(at);
+		if (D.proxy_searches++ == 0) D.proxy_faces = (int) px->solid.mesh.F.size(), D.proxy_distance = px->distance;
+		DecomposeOptions po   = o;
+		po.tau                = std::max(o.tau - px->distance, 0.5 * o.tau);   // so that the solid's parts rarely fail where the proxy's pass
+		po.time_limit_seconds = left();
+		Decomposition P       = cut_tree(px->solid, po);
+		if (merge) merge_parts(P, o.tau, o.progress, left());
+		absorb(P);
+		std::vector<int>   leaves;
+		std::map<int, int> reached;   // the proxy's leaves the replay reached: their nodes in D
+		replay(at, P, px->distance, leaves, reached);
+		const std::vector<char> united = unite_parts(P, reached);
+		std::vector<int> rest;
+		for (int l : leaves)
+			if (!united[l]) rest.push_back(l);
+		parallel_for(rest.size(), [&](size_t i) { measure_node(D.nodes[rest[i]], keep, o.tau); });
+		for (int l : rest)
+			if (needs_search(D.nodes[l]) && !D.time_limit_reached) {
+				++D.proxy_retries;
+				search_node(l, level, false);
+			}
+	}
+
+	// The proxy's merged parts made of the solid's leaves (all reached), glued on the cuts between
+	// them; each union that passes the certificate becomes a merged part. Which leaves it took.
+	std::vector<char> unite_parts(const Decomposition& P, const std::map<int, int>& reached)
+	{
+		std::vector<std::vector<int>> groups;
+		for (int p : P.parts()) {
+			std::vector<int> g;
+			for (int l : P.nodes[p].merged)
+				if (reached.count(l)) g.push_back(reached.at(l));
+			if (g.size() > 1 && g.size() == P.nodes[p].merged.size()) groups.push_back(std::move(g));
+		}
+		std::vector<std::optional<Node>> unions(groups.size());
+		parallel_for(groups.size(), [&](size_t i) { unions[i] = united(groups[i]); });
+		std::vector<char> took(D.nodes.size(), 0);
+		for (size_t i = 0; i < groups.size(); ++i) {
+			if (!unions[i]) continue;
+			const int id = (int) D.nodes.size();
+			for (int l : groups[i]) took[l] = 1, D.nodes[l].part = id;
+			D.merges += (int) groups[i].size() - 1;
+			D.nodes.push_back(std::move(*unions[i]));
+		}
+		return took;
+	}
+
+	// The cut between two leaves: their deepest common node.
+	int between(int a, int b) const
+	{
+		const std::string &pa = D.nodes[a].path, &pb = D.nodes[b].path;
+		size_t             n  = 0;
+		while (n < pa.size() && n < pb.size() && pa[n] == pb[n]) ++n;
+		int id = a;
+		while (D.nodes[id].path.size() > n) id = D.nodes[id].parent;
+		return id;
+	}
+
+	// The leaves (path order) glued into one solid, measured; if it is one certified solid without a
+	// cavity holding their volume, as a merged part's node.
+	std::optional<Node> united(const std::vector<int>& leaves) const
+	{
+		const double eps = 1e-9 * extent(D.nodes[0].mesh.V);
+		TriMesh      u   = D.nodes[leaves[0]].mesh;
+		double       volume = D.nodes[leaves[0]].volume;
+		for (size_t k = 1; k < leaves.size(); ++k) {
+			std::vector<Plane> planes;
+			for (size_t j = 0; j < k; ++j) {
+				const Node& c = D.nodes[between(leaves[j], leaves[k])];
+				if (c.has_plane &&
+				    std::none_of(planes.begin(), planes.end(), [&](const Plane& p) { return p.n == c.plane.n && p.d == c.plane.d; }))
+					planes.push_back(c.plane);
+			}
+			u = glue(u, D.nodes[leaves[k]].mesh, planes, eps);
+			volume += D.nodes[leaves[k]].volume;
+		}
+		Node n;
+		try {
+			Solid s = make_solid(u);
+			if (s.shells != 1 || s.cavities > 0 || s.self_intersections > 0 || std::abs(s.volume - volume) > 1e-6 * volume)
+				return std::nullopt;
+			n.mesh = std::move(s.mesh);
+		}
+		catch (const Error&) {
+			return std::nullopt;
+		}
+		measure_node(n, keep, o.tau);
+		if (!certified(n, o.tau) || n.cavities > 0) return std::nullopt;
+		n.path   = D.nodes[leaves[0]].path + "+" + std::to_string(leaves.size() - 1);
+		n.merged = leaves;
+		return n;
+	}
+
+	void search_as_is(int at)
+	{
+		Solid s;
+		s.mesh   = D.nodes[at].mesh;
+		s.volume = signed_volume(s.mesh);
+		face_components(s.mesh, &s.shells);
+		DecomposeOptions eo   = o;
+		eo.time_limit_seconds = left();
+		Decomposition sub     = cut_tree(s, eo);
+		absorb(sub);
+		graft(at, sub);
+	}
+
+	// A search's limits and counts into the tree.
+	void absorb(const Decomposition& sub)
+	{
+		D.max_parts_reached |= sub.max_parts_reached;
+		D.time_limit_reached |= sub.time_limit_reached;
+		D.hole_cuts += sub.hole_cuts;
+		D.kept_cavities += sub.kept_cavities;
+		D.films_dropped += sub.films_dropped;
+		D.film_volume += sub.film_volume;
+	}
+
+	// The proxy's cut tree on the solid from leaf `at` down: each of its cuts made by its plane on the
+	// solid's node, as far as the plane splits it in two; the solid's leaves into `leaves`. Inner nodes
+	// keep the proxy's measures widened by its distance; the leaves are measured on the solid later.
+	void replay(int at, const Decomposition& P, double e, std::vector<int>& leaves, std::map<int, int>& reached)
+	{
+		std::vector<std::pair<int, int>> todo{{at, 0}};
+		while (!todo.empty()) {
+			const auto [id, pid] = todo.back();
+			todo.pop_back();
+			const Node& pn = P.nodes[pid];
+			Node&       n  = D.nodes[id];
+			n.concavity           = pn.concavity + e;
+			n.hull_distance       = pn.hull_distance;
+			n.hull_distance_bound = pn.hull_distance_bound + e;
+			n.notch               = pn.notch;
+			n.notch_count         = pn.notch_count;
+			n.cavities            = pn.cavities;
+			n.volume              = signed_volume(n.mesh);
+			if (pn.child[0] < 0) reached[pid] = id;
+			std::array<TriMesh, 2> parts;
+			if (pn.child[0] < 0 || !split_like(n.mesh, P, pn, parts)) {
+				leaves.push_back(id);
+				continue;
+			}
+			n.has_plane = !pn.solids;
+			n.solids    = pn.solids;
+			n.plane     = pn.plane;
+			n.cut_at    = pn.cut_at;
+			n.hole_cut  = pn.hole_cut;
+			const std::string path = n.path;
+			for (int s = 0; s < 2; ++s) {
+				Node c;
+				c.parent = id;
+				c.path   = path + char('0' + s);
+				c.mesh   = std::move(parts[s]);
+				D.nodes.push_back(std::move(c));
+				D.nodes[id].child[s] = (int) D.nodes.size() - 1;
+			}
+			for (int s = 1; s >= 0; --s) todo.push_back({D.nodes[id].child[s], pn.child[s]});
+		}
+		std::sort(leaves.begin(), leaves.end(), [&](int a, int b) { return D.nodes[a].path < D.nodes[b].path; });
+	}
+
+	// The proxy node's split made on the solid's node: the same plane through the same region, or the
+	// same solids apart. False if it does not split the solid's node in two parts with volume.
+	static bool split_like(const TriMesh& mesh, const Decomposition& P, const Node& pn, std::array<TriMesh, 2>& parts)
+	{
+		if (pn.solids) return split_solids(mesh, P.nodes[pn.child[0]].mesh, parts);
+		SplitOutcome so;
+		try {
+			if (!separate(mesh, pn.plane, pn.cut_at, so)) return false;
+		}
+		catch (const Error&) {
+			return false;
+		}
+		const double v = signed_volume(mesh);
+		for (const TriMesh& p : so.parts)
+			if (!(signed_volume(p) > 1e-5 * v)) return false;
+		parts = std::move(so.parts);
+		return true;
+	}
+
+	// A search of leaf `at` (its root is `at` itself) hung into the tree below it.
+	void graft(int at, Decomposition& sub)
+	{
+		std::vector<int> id(sub.nodes.size(), at);
+		const std::string base = D.nodes[at].path;
+		for (size_t k = 1; k < sub.nodes.size(); ++k) {
+			id[k] = (int) D.nodes.size();
+			D.nodes.push_back(std::move(sub.nodes[k]));
+			D.nodes.back().path = base + D.nodes.back().path.substr(1);
+		}
+		const auto map = [&](int k) { return k < 0 ? -1 : id[k]; };
+		for (size_t k = 1; k < sub.nodes.size(); ++k) {
+			Node& n    = D.nodes[id[k]];
+			n.parent   = map(n.parent);
+			n.child[0] = map(n.child[0]), n.child[1] = map(n.child[1]);
+		}
+		Node& r  = sub.nodes[0];
+		r.parent = D.nodes[at].parent;
+		r.path   = base;
+		r.child[0] = map(r.child[0]), r.child[1] = map(r.child[1]);
+		r.mesh     = std::move(D.nodes[at].mesh);
+		D.nodes[at] = std::move(r);
+	}
+};
+
+} // namespace
+
+Decomposition search(const Solid& solid, const DecomposeOptions& o, const ProxySettings& ps)
+{
+	if (o.max_parts > 0 || (int) solid.mesh.F.size() <= ps.above) {
+		const auto    start = std::chrono::steady_clock::now();
+		Decomposition D     = cut_tree(solid, o);
+		if (o.merge_parts) {
+			// The time limit bounds the cuts and the merge together; the merge gets what the cuts left.
+			const double spent = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+			merge_parts(D, o.tau, o.progress, o.time_limit_seconds > 0 ? std::max(o.time_limit_seconds - spent, 1e-9) : 0);
+		}
+		return D;
+	}
+	return ProxySearch(o, ps).run(solid);
+}
+
+} // namespace acd

@@ -1,0 +1,236 @@
+// Decimation in rounds (decimate.h): every round measures each edge's collapse, then collapses the
+// cheapest ones whose ends are untouched so far in the round. A collapse changes the position, quadric
+// and faces of its kept vertex only (its neighbours keep their face ids, two of them dead), so every
+// other edge's measure and adjacency stay exact for the rest of the round. No heap, no half-edge
+// structure: a round is a sort and a sweep, which keeps millions of faces to seconds.
+#include "acd/mesh/decimate.h"
+#include "acd/mesh/measures.h"
+#include "acd/mesh/parallel.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace acd {
+
+namespace {
+
+// Area-weighted sum of squared distances to planes: p'Ap + 2b'p + c, over a total area w.
+struct Quadric
+{
+	Eigen::Matrix3d A = Eigen::Matrix3d::Zero();
+	Vec3            b = Vec3::Zero();
+	double          c = 0, w = 0;
+	void add_plane(const Vec3& n, double d, double area)
+	{
+		A += area * n * n.transpose();
+		b -= area * d * n;
+		c += area * d * d;
+		w += area;
+	}
+	Quadric& operator+=(const Quadric& o)
+	{
+		A += o.A, b += o.b, c += o.c, w += o.w;
+		return *this;
+	}
+	// Mean squared distance of p to the planes.
+	double mean(const Vec3& p) const { return w > 0 ? std::max(0.0, p.dot(A * p) + 2 * b.dot(p) + c) / w : 0; }
+};
+
+struct Collapse
+{
+	double cost = 0;
+	int    u = -1, v = -1;   // v goes into u
+	Vec3   p = Vec3::Zero();
+	bool   operator<(const Collapse& o) const { return cost != o.cost ? cost < o.cost : u != o.u ? u < o.u : v < o.v; }
+};
+
+class Decimator
+{
+public:
+	Decimator(const TriMesh& m, double max_error)
+	    : V(m.V), F(m.F), Q(m.V.size()), bar(max_error * max_error), floor(1e-12 * std::pow(bbox_diagonal(m.V), 2))
+	{
+		for (const Tri& t : F) {
+			const Vec3   n    = (V[t[1]] - V[t[0]]).cross(V[t[2]] - V[t[0]]);
+			const double area = 0.5 * n.norm();
+			if (!(area > 0)) continue;
+			const Vec3 u = n.normalized();
+			for (int v : t) Q[v].add_plane(u, u.dot(V[t[0]]), area);
+		}
+	}
+
+	// One round: false when nothing could be collapsed.
+	bool round(size_t target)
+	{
+		index_faces();
+		const std::vector<Collapse> order = cheapest();
+		locked.assign(V.size(), 0);
+		size_t faces = F.size(), done = 0;
+		for (const Collapse& c : order) {
+			if (faces <= target) break;
+			if (locked[c.u] || locked[c.v] || !allowed(c)) continue;
+			collapse(c);
+			faces -= 2;
+			++done;
+		}
+		compact_faces();
+		return done > 0;
+	}
+
+	size_t  faces() const { return F.size(); }
+	TriMesh mesh() const
+	{
+		TriMesh          out;
+		std::vector<int> id(V.size(), -1);
+		for (const Tri& t : F)
+			for (int v : t) id[v] = 0;
+		for (size_t v = 0; v < V.size(); ++v)
+			if (id[v] == 0) id[v] = (int) out.V.size(), out.V.push_back(V[v]);
+		for (const Tri& t : F) out.F.push_back({id[t[0]], id[t[1]], id[t[2]]});
+		return out;
+	}
+
+private:
+	std::vector<Vec3>    V;
+	std::vector<Tri>     F;
+	std::vector<Quadric> Q;
+	const double         bar, floor;
+	std::vector<int>     start, incident;   // faces around each vertex (at the round's start)
+	std::vector<char>    dead, locked;
+	mutable std::vector<int> ring[2], opposite, common;   // allowed()'s scratch
+
+	void index_faces()
+	{
+		start.assign(V.size() + 1, 0);
+		for (const Tri& t : F)
+			for (int v : t) ++start[v + 1];
+		for (size_t v = 0; v < V.size(); ++v) start[v + 1] += start[v];
+		incident.assign(start.back(), -1);
+		std::vector<int> at(start.begin(), start.end() - 1);
+		for (int f = 0; f < (int) F.size(); ++f)
+			for (int v : F[f]) incident[at[v]++] = f;
+		dead.assign(F.size(), 0);
+	}
+
+	void compact_faces()
+	{
+		size_t k = 0;
+		for (size_t f = 0; f < F.size(); ++f)
+			if (!dead[f]) F[k++] = F[f];
+		F.resize(k);
+	}
+
+	// Where the merged vertex goes: the quadric's minimum when it is well defined and near the edge,
+	// else the better end or the midpoint.
+	Collapse measure(int u, int v) const
+	{
+		Quadric q = Q[u];
+		q += Q[v];
+		Collapse     c{INFINITY, u, v, V[u]};
+		const double len = (V[u] - V[v]).norm();
+		const Vec3   mid = 0.5 * (V[u] + V[v]);
+		if (q.A.determinant() > 1e-9 * q.A.trace() * q.A.trace() * q.A.trace()) {
+			const Vec3 p = -q.A.inverse() * q.b;
+			if ((p - mid).norm() <= len) c = {q.mean(p), u, v, p};
+		}
+		for (const Vec3& p : {V[u], V[v], mid})
+			if (q.mean(p) < c.cost) c = {q.mean(p), u, v, p};
+		return c;
+	}
+
+	// Every edge's collapse within the error bar, cheapest first.
+	std::vector<Collapse> cheapest() const
+	{
+		std::vector<std::pair<int, int>> edges;
+		for (const Tri& t : F)
+			for (int k = 0; k < 3; ++k)
+				if (t[k] < t[(k + 1) % 3]) edges.push_back({t[k], t[(k + 1) % 3]});
+		std::vector<Collapse> all(edges.size());
+		const size_t          chunk = 4096;
+		parallel_for((edges.size() + chunk - 1) / chunk, [&](size_t c) {
+			for (size_t i = c * chunk; i < std::min(edges.size(), (c + 1) * chunk); ++i) all[i] = measure(edges[i].first, edges[i].second);
+		});
+		std::vector<Collapse> out;
+		for (const Collapse& c : all)
+			if (c.cost <= bar) out.push_back(c);
+		std::sort(out.begin(), out.end());
+		return out;
+	}
+
+	template <class Fn> void each_face(int v, Fn fn) const
+	{
+		for (int i = start[v]; i < start[v + 1]; ++i)
+			if (!dead[incident[i]]) fn(incident[i]);
+	}
+	int degree(int v) const
+	{
+		int n = 0;
+		each_face(v, [&](int) { ++n; });
+		return n;
+	}
+
+	// The link condition (the two ends share exactly the edge's two opposite vertices, each left with
+	// three neighbours at least) and no face turned or flattened.
+	bool allowed(const Collapse& c) const
+	{
+		for (auto& r : ring) r.clear();
+		opposite.clear(), common.clear();
+		for (int s = 0; s < 2; ++s)
+			each_face(s ? c.v : c.u, [&](int f) {
+				const Tri& t = F[f];
+				const bool both = std::count(t.begin(), t.end(), c.u) && std::count(t.begin(), t.end(), c.v);
+				for (int w : t) {
+					if (w != c.u && w != c.v) ring[s].push_back(w);
+					if (both && s == 0 && w != c.u && w != c.v) opposite.push_back(w);
+				}
+			});
+		if (opposite.size() != 2) return false;
+		for (auto& r : ring) {
+			std::sort(r.begin(), r.end());
+			r.erase(std::unique(r.begin(), r.end()), r.end());
+		}
+		std::set_intersection(ring[0].begin(), ring[0].end(), ring[1].begin(), ring[1].end(), std::back_inserter(common));
+		if (common.size() != 2 || ring[0].size() + ring[1].size() - 2 < 3) return false;
+		for (int o : opposite)
+			if (degree(o) < 4) return false;
+		bool ok = true;
+		for (int s = 0; s < 2 && ok; ++s)
+			each_face(s ? c.v : c.u, [&](int f) {
+				const Tri& t = F[f];
+				if (std::count(t.begin(), t.end(), c.u) && std::count(t.begin(), t.end(), c.v)) return;
+				std::array<Vec3, 3> p;
+				for (int k = 0; k < 3; ++k) p[k] = t[k] == c.u || t[k] == c.v ? c.p : V[t[k]];
+				const Vec3 before = (V[t[1]] - V[t[0]]).cross(V[t[2]] - V[t[0]]);
+				const Vec3 after  = (p[1] - p[0]).cross(p[2] - p[0]);
+				ok = ok && after.norm() > floor && after.dot(before) >= 0.5 * after.norm() * before.norm();
+			});
+		return ok;
+	}
+
+	void collapse(const Collapse& c)
+	{
+		locked[c.u] = locked[c.v] = 1;   // u's face list is stale from here on (v's faces joined it)
+		each_face(c.v, [&](int f) {
+			Tri& t = F[f];
+			if (std::count(t.begin(), t.end(), c.u)) dead[f] = 1;
+			else
+				for (int& w : t)
+					if (w == c.v) w = c.u;
+		});
+		V[c.u] = c.p;
+		Q[c.u] += Q[c.v];
+	}
+};
+
+} // namespace
+
+Decimated decimate(const TriMesh& m, int target_faces, double max_error)
+{
+	Decimated out;
+	Decimator d(m, max_error);
+	while (d.faces() > (size_t) std::max(target_faces, 4) && out.passes < 1000 && d.round(std::max(target_faces, 4))) ++out.passes;
+	out.mesh = d.mesh();
+	return out;
+}
+
+} // namespace acd

@@ -1,0 +1,104 @@
+#include "acd/mesh/decimate.h"
+#include "acd/solid/solid.h"
+#include "check.h"
+#include "shapes.h"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <set>
+#include <utility>
+
+using namespace acd;
+
+namespace {
+
+// Measured here, not by the core: the distance from p to the torus (R, r) around z, and a mesh's
+// volume and Euler characteristic.
+double torus_distance(const Vec3& p, double R, double r)
+{
+	return std::abs(std::hypot(std::hypot(p.x(), p.y()) - R, p.z()) - r);
+}
+
+double volume(const TriMesh& m)
+{
+	double v = 0;
+	for (const Tri& t : m.F) v += m.V[t[0]].dot(m.V[t[1]].cross(m.V[t[2]])) / 6;
+	return v;
+}
+
+long euler(const TriMesh& m)
+{
+	std::set<std::pair<int, int>> edges;
+	std::set<int>                 verts;
+	for (const Tri& t : m.F)
+		for (int k = 0; k < 3; ++k) {
+			edges.insert(std::minmax(t[k], t[(k + 1) % 3]));
+			verts.insert(t[k]);
+		}
+	return (long) verts.size() - (long) edges.size() + (long) m.F.size();
+}
+
+// Every face split in four at its edges' midpoints (shared midpoints shared): the same shape.
+TriMesh subdivided(const TriMesh& m)
+{
+	TriMesh                            out = m;
+	std::map<std::pair<int, int>, int> mid;
+	const auto at = [&](int a, int b) {
+		const auto key = std::minmax(a, b);
+		auto       it  = mid.find(key);
+		if (it != mid.end()) return it->second;
+		out.V.push_back(0.5 * (m.V[a] + m.V[b]));
+		return mid[key] = (int) out.V.size() - 1;
+	};
+	out.F.clear();
+	for (const Tri& t : m.F) {
+		const int a = at(t[0], t[1]), b = at(t[1], t[2]), c = at(t[2], t[0]);
+		out.F.push_back({t[0], a, c});
+		out.F.push_back({a, t[1], b});
+		out.F.push_back({c, b, t[2]});
+		out.F.push_back({a, b, c});
+	}
+	return out;
+}
+
+} // namespace
+
+TEST_CASE("decimate: a fine torus to a twentieth of its faces stays a closed torus near the surface")
+{
+	const double  R = 1, r = 0.4;
+	const TriMesh fine = shapes::torus(R, r, 200, 100);
+	const double  bar  = 0.01;
+	const Decimated d  = decimate(fine, (int) fine.F.size() / 20, bar);
+	CHECK(d.mesh.F.size() <= fine.F.size() / 20);
+	CHECK(d.mesh.F.size() >= fine.F.size() / 20 - 2);
+	const Solid s = make_solid(d.mesh);   // closed, edge-manifold, oriented: or it throws
+	CHECK(s.shells == 1);
+	CHECK(s.self_intersections == 0);
+	CHECK(euler(d.mesh) == 0);   // still genus one
+	double far = 0;
+	for (const Vec3& p : d.mesh.V) far = std::max(far, torus_distance(p, R, r));
+	CHECK(far <= 2 * bar);
+	CHECK_NEAR(volume(d.mesh) / (2 * M_PI * M_PI * R * r * r), 1.0, 0.02);
+	// The same input, the same output.
+	const Decimated again = decimate(fine, (int) fine.F.size() / 20, bar);
+	CHECK(again.mesh.V == d.mesh.V);
+	CHECK(again.mesh.F == d.mesh.F);
+}
+
+TEST_CASE("decimate: a flat-sided solid keeps its shape exactly; a tiny error bar keeps every face")
+{
+	// A box whose sides are finely triangulated (midpoints, four times): collapses on the flat sides
+	// cost nothing, so the box comes back with the same volume, every vertex on a side.
+	TriMesh box = shapes::box({0, 0, 0}, {1, 1, 1});
+	for (int k = 0; k < 4; ++k) box = subdivided(box);
+	const Decimated d   = decimate(box, 12, 1e-6);
+	CHECK(d.mesh.F.size() < box.F.size() / 4);
+	CHECK_NEAR(volume(d.mesh), 1.0, 1e-9);
+	for (const Vec3& p : d.mesh.V)
+		CHECK(std::min({p.x(), 1 - p.x(), p.y(), 1 - p.y(), p.z(), 1 - p.z()}) <= 1e-9);   // on a side
+	make_solid(d.mesh);
+	// A curved surface under an error bar far below its facets' sag: nothing collapses.
+	const TriMesh sphere = shapes::sphere(3, 1);
+	CHECK(decimate(sphere, 10, 1e-9).mesh.F.size() == sphere.F.size());
+}

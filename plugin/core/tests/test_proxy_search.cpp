@@ -1,0 +1,105 @@
+#include "acd/decompose3/proxy_search.h"
+#include "acd/mesh/measures.h"
+#include "acd/solid/solid.h"
+#include "check.h"
+#include "shapes.h"
+
+#include <algorithm>
+#include <map>
+
+using namespace acd;
+
+namespace {
+
+// A U-shaped bar with finely triangulated faces: two notches to cut at, and enough faces for a proxy.
+TriMesh fine_u()
+{
+	TriMesh m = shapes::extrude(shapes::u_shape(), -0.5, 0.5);
+	for (int round = 0; round < 4; ++round) {
+		TriMesh out = m;
+		out.F.clear();
+		std::map<std::pair<int, int>, int> mid;
+		const auto at = [&](int a, int b) {
+			const auto key = std::minmax(a, b);
+			auto       it  = mid.find(key);
+			if (it != mid.end()) return it->second;
+			out.V.push_back(0.5 * (m.V[a] + m.V[b]));
+			return mid[key] = (int) out.V.size() - 1;
+		};
+		for (const Tri& t : m.F) {
+			const int a = at(t[0], t[1]), b = at(t[1], t[2]), c = at(t[2], t[0]);
+			out.F.insert(out.F.end(), {{t[0], a, c}, {a, t[1], b}, {c, b, t[2]}, {a, b, c}});
+		}
+		m = std::move(out);
+	}
+	return m;
+}
+
+double volume(const TriMesh& m)   // measured here, not by the core
+{
+	double v = 0;
+	for (const Tri& t : m.F) v += m.V[t[0]].dot(m.V[t[1]].cross(m.V[t[2]])) / 6;
+	return v;
+}
+
+DecomposeOptions options(double tau)
+{
+	DecomposeOptions o;
+	o.tau = tau;
+	return o;
+}
+
+} // namespace
+
+TEST_CASE("proxy search: the proxy's cuts part the solid exactly, every part certified on the solid")
+{
+	const TriMesh m = fine_u();
+	REQUIRE(m.F.size() > 5000);
+	const Solid   s = make_solid(m);
+	ProxySettings ps;
+	ps.above = 2000, ps.faces = 400;
+	const Decomposition D = search(s, options(0.02 * extent(m.V)), ps);
+	CHECK(D.proxy_searches >= 1);
+	CHECK(D.proxy_faces <= 400);
+	CHECK(D.proxy_distance < 0.25 * D.tau);
+	CHECK(D.tau_convex());
+	double total = 0;
+	for (int p : D.parts()) {
+		const Node& n = D.nodes[p];
+		make_solid(n.mesh);   // each part closed and manifold, or it throws
+		total += volume(n.mesh);
+		// The part's certificate is the solid's own: measured again here on the part, it holds.
+		Node again;
+		again.mesh = n.mesh;
+		measure_node(again, false, D.tau);
+		CHECK(certified(again, D.tau));
+	}
+	CHECK_NEAR(total / volume(m), 1.0, 1e-9);
+	// As few parts as the search on the solid itself, give or take one.
+	ps.above = (int) m.F.size();
+	const Decomposition exact = search(s, options(0.02 * extent(m.V)), ps);
+	CHECK(exact.proxy_searches == 0);
+	CHECK(D.parts().size() <= exact.parts().size() + 1);
+}
+
+TEST_CASE("proxy search: a proxy too coarse for tau has its failing parts searched again, and the result is the same on any thread count")
+{
+	const TriMesh m = shapes::torus(1, 0.4, 120, 60);
+	const Solid   s = make_solid(m);
+	ProxySettings ps;
+	ps.above = 2000, ps.faces = 150, ps.error = 10, ps.widest = 10;   // a crude proxy, allowed
+	std::vector<std::vector<Vec3>> first;
+	for (int threads : {1, 2}) {
+		DecomposeOptions o = options(0.02 * extent(m.V));
+		o.threads          = threads;
+		const Decomposition D = search(s, o, ps);
+		CHECK(D.tau_convex());
+		CHECK(D.proxy_retries > 0);
+		std::vector<std::vector<Vec3>> parts;
+		double                         total = 0;
+		for (int p : D.parts()) parts.push_back(D.nodes[p].mesh.V), total += volume(D.nodes[p].mesh);
+		CHECK_NEAR(total / volume(m), 1.0, 1e-9);
+		if (threads == 1) first = parts;
+		else CHECK(parts == first);
+	}
+}
