@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Benchmark against CoACD, V-HACD 4 and CGAL's ACD (see bench/bench.py --help); with --robots, the
 # robot corpus with the certificate and the peers on a sample (bench/bench_robots.py); with --rotation,
-# the pose-dependence table instead (bench/bench_rotation.py); with --polygons, the 2D table against
+# the pose-dependence table instead (bench/bench_rotation.py); with --scale, time against face count on a
+# scan and a CAD series (bench/bench_scale.py); with --polygons, the 2D table against
 # CGAL's Partition_2 (bench/bench_polygons.py). Installs what it needs on top of
 # scripts/setup.sh: the peers from PyPI and the C++ metric/peer tools.
 set -euo pipefail
@@ -18,6 +19,10 @@ cmake --build "$ACD_BUILD_DIR" --target acd_metrics cgal_acd_peer -- -j"$(nproc)
 if [ "${1:-}" = "--robots" ]; then   # the example-robot-data corpus: ours on every mesh, the peers on a sample
 	shift
 	exec python3 "$here/bench_robots.py" "$@"
+fi
+if [ "${1:-}" = "--scale" ]; then   # time against face count: a scan series and a CAD series
+	shift
+	exec python3 "$here/bench_scale.py" "$@"
 fi
 if [ "${1:-}" = "--rotation" ]; then
 	shift

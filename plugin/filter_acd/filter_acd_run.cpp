@@ -243,6 +243,9 @@ FilterACD::decompose(const RichParameterList& par, MeshDocument& md, vcg::CallBa
 	    idx, o.tau, d.max_part_concavity(), d.max_hull_distance(), secs,
 	    d.max_parts_reached ? " (max_parts reached: some parts exceed tau)" : "");
 	if (d.merges > 0) log("%d neighbouring parts merged after the cuts (their unions within tau)", d.merges);
+	if (d.proxy_searches > 0)
+		log("Searched on a %d-face copy %g from the surface; every part certified on the mesh itself (%d searched again)",
+		    d.proxy_faces, d.proxy_distance, d.proxy_retries);
 	if (d.merge_time_limit_reached)
 		log("Merging stopped at the time limit after %d merges: the parts are within tau, but more of them could merge "
 		    "(raise time_limit or set it to 0)", d.merges);
@@ -281,6 +284,9 @@ FilterACD::decompose(const RichParameterList& par, MeshDocument& md, vcg::CallBa
 		{"kept_cavities", d.kept_cavities},
 		{"max_hull_distance", d.max_hull_distance()},
 		{"tau_convex", d.tau_convex()},
+		{"proxy_faces", d.proxy_faces},       // the search's simplified copy (0: searched on the mesh itself)
+		{"proxy_distance", d.proxy_distance},
+		{"proxy_retries", d.proxy_retries},   // parts whose certificate failed on the mesh, searched again
 	};
 }
 

@@ -17,6 +17,7 @@
 #include <algorithm>
 #include <chrono>
 #include <map>
+#include <array>
 #include <optional>
 
 namespace acd {

@@ -1,0 +1,157 @@
+#!/usr/bin/env python3
+"""Time against face count: ours at the defaults beside CoACD 0.05 and V-HACD's default, in one run.
+
+Two series of the same shape at growing face counts:
+  scan  pymeshlab's bunny made watertight by screened Poisson (depth 8), decimated to ~23k faces, then
+        Loop-subdivided once, twice and three times (~92k, ~368k, ~1.5M faces);
+  CAD   one closed robot link (example-robot-data), every face split at its edges' midpoints 0 to 3
+        times: the same geometry, four times the faces per step.
+Each method runs in its own child process (bench.py's run_method): wall time of the call alone, peak
+memory of the child, hulls, and the two-sided hull error by the neutral acd_metrics tool.
+
+    bench/bench.sh --scale                      both series, every method
+    bench/bench.sh --scale --methods ours       ours only
+Writes bench/results/scale.md and docs/scale.png.
+"""
+import argparse
+import json
+import os
+import pathlib
+import platform
+import subprocess
+import sys
+import textwrap
+
+HERE = pathlib.Path(__file__).resolve().parent
+REPO = HERE.parent
+sys.path.insert(0, str(HERE))
+import bench  # noqa: E402  (run_method, metrics, face_count)
+
+CACHE = pathlib.Path(os.environ.get("XDG_CACHE_HOME", pathlib.Path.home() / ".cache")) / "meshlab-acd" / "scale"
+METHODS = [("ours", "defaults", {}), ("coacd", "threshold 0.05", {"threshold": 0.05}),
+           ("vhacd4", "default (400k voxels)", {"resolution": 400000})]
+
+# Meshes are made in a child process: pymeshlab's filters hold the GIL and much memory.
+MAKE_SCAN = textwrap.dedent("""
+    import pathlib, sys, pymeshlab
+    out = pathlib.Path(sys.argv[1])
+    src = pathlib.Path(pymeshlab.__file__).parent / "tests" / "sample_meshes" / "bunny.obj"
+    ms = pymeshlab.MeshSet()
+    ms.load_new_mesh(str(src))
+    ms.generate_surface_reconstruction_screened_poisson(depth=8)
+    ms.meshing_decimation_quadric_edge_collapse(targetfacenum=23000, preservetopology=True)
+    ms.meshing_remove_unreferenced_vertices()
+    for k in range(4):
+        if k:
+            ms.meshing_surface_subdivision_loop(iterations=1, threshold=pymeshlab.PercentageValue(0))
+        ms.save_current_mesh(str(out / f"scan_{k}.obj"), save_vertex_normal=False, save_vertex_color=False,
+                             save_wedge_texcoord=False, save_face_color=False)
+""")
+MAKE_CAD = textwrap.dedent("""
+    import pathlib, sys, pymeshlab
+    src, out = sys.argv[1], pathlib.Path(sys.argv[2])
+    ms = pymeshlab.MeshSet()
+    ms.load_new_mesh(src)
+    ms.meshing_remove_duplicate_vertices()
+    for k in range(4):
+        if k:
+            ms.meshing_surface_subdivision_midpoint(iterations=1, threshold=pymeshlab.PercentageValue(0))
+        ms.save_current_mesh(str(out / f"cad_{k}.obj"), save_vertex_normal=False, save_vertex_color=False,
+                             save_wedge_texcoord=False, save_face_color=False)
+""")
+
+
+def cad_link():
+    """The robot corpus's first closed, 2-manifold link (by path) with 3,000 to 12,000 faces."""
+    import pymeshlab
+    sys.path.insert(0, str(REPO / "tests"))
+    from support import robots
+    for path in robots.corpus(robots.fetch_corpus()):
+        ms = pymeshlab.MeshSet()
+        try:
+            ms.load_new_mesh(str(path))
+            ms.meshing_remove_duplicate_vertices()
+        except pymeshlab.PyMeshLabException:
+            continue
+        m = ms.current_mesh()
+        t = ms.get_topological_measures()
+        if 3000 <= m.face_number() <= 12000 and not t["boundary_edges"] and not t["non_two_manifold_edges"] \
+                and t["connected_components_number"] == 1:
+            return path
+    raise SystemExit("no closed robot link of 3k to 12k faces in the corpus")
+
+
+def series():
+    CACHE.mkdir(parents=True, exist_ok=True)
+    if not (CACHE / "scan_3.obj").exists():
+        subprocess.run([sys.executable, "-c", MAKE_SCAN, str(CACHE)], check=True)
+    link = cad_link()
+    (CACHE / "cad_link.txt").write_text(str(link) + "\n")
+    if not (CACHE / "cad_3.obj").exists():
+        subprocess.run([sys.executable, "-c", MAKE_CAD, str(link), str(CACHE)], check=True)
+    return [("scan", CACHE / f"scan_{k}.obj") for k in range(4)] + [("CAD", CACHE / f"cad_{k}.obj") for k in range(4)], link
+
+
+def plot(rows, path):
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    fig, axes = plt.subplots(1, 2, figsize=(10, 4))
+    for ax, name in zip(axes, ("scan", "CAD")):
+        for method, label, _ in METHODS:
+            pts = [(r["faces"], r["time"]) for r in rows if r["series"] == name and r["method"] == method and "time" in r]
+            if pts:
+                ax.loglog(*zip(*pts), marker="o", label=f"{method} ({label})")
+        ax.set_title(f"{name} series")
+        ax.set_xlabel("faces")
+        ax.set_ylabel("time (s)")
+        ax.grid(True, which="both", alpha=0.3)
+        ax.legend(fontsize=8)
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--methods", nargs="*", default=[m[0] for m in METHODS])
+    ap.add_argument("--timeout", type=int, default=900, help="seconds per method run")
+    ap.add_argument("--samples", type=int, default=200000, help="samples per hull error")
+    ap.add_argument("--out", default=str(REPO / "bench" / "results" / "scale.md"))
+    ap.add_argument("--plot", default=str(REPO / "docs" / "scale.png"))
+    args = ap.parse_args()
+    meshes, link = series()
+    cpu = next((l.split(":", 1)[1].strip() for l in open("/proc/cpuinfo") if l.startswith("model name")), "?")
+    head = ["| series | faces | method | setting | hulls | hull error (% diag) | time (s) | peak memory (MB) | notes |",
+            "|---|---|---|---|---|---|---|---|---|"]
+    print("\n".join(head), flush=True)
+    rows, lines = [], []
+    for name, inp in meshes:
+        faces = bench.face_count(inp)
+        for method, label, params in METHODS:
+            if method not in args.methods:
+                continue
+            hulls = CACHE / f"hulls_{inp.stem}_{method}.obj"
+            r = bench.run_method(method, params, inp, hulls, args.timeout)
+            if "error" not in r:
+                r.update(bench.metrics(inp, hulls, args.samples))
+            r.update(series=name, faces=faces, method=method, setting=label)
+            rows.append(r)
+            if "error" in r and "time" not in r:
+                line = f"| {name} | {faces} | {method} | {label} | | | | | {r['error'][:80]} |"
+            else:
+                err = r.get("hull_error")
+                line = (f"| {name} | {faces} | {method} | {label} | {r['hulls']} | "
+                        f"{'n/a' if err is None else format(100 * err, '.2f')} | {r['time']:.2f} | {r['peak_mb']:.0f} | |")
+            lines.append(line)
+            print(line, flush=True)
+    md = [f"Scaling benchmark on {platform.system()} {platform.release()}, {os.cpu_count()} cores ({cpu}); "
+          f"command `bench/bench.sh --scale {' '.join(sys.argv[1:])}`.", "",
+          f"CAD series link: `{link.name}` ({link.parent.name}).", ""] + head + lines
+    pathlib.Path(args.out).write_text("\n".join(md) + "\n")
+    json.dump(rows, open(pathlib.Path(args.out).with_suffix(".json"), "w"), indent=1)
+    plot(rows, args.plot)
+    print(f"[bench] {args.out} and {args.plot}")
+
+
+if __name__ == "__main__":
+    sys.exit(main())
