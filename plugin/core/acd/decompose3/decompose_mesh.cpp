@@ -1,4 +1,5 @@
 #include "acd/decompose3/decompose_mesh.h"
+#include "acd/decompose3/proxy_search.h"
 
 #include <algorithm>
 
@@ -16,16 +17,22 @@ MeshDecomposition decompose_mesh(const TriMesh& mesh, const PrepareOptions& prep
 	}
 	DecomposeOptions bounded = r.options;
 	const double     limit   = r.options.time_limit_seconds;
-	if (r.prepared.solid.self_intersections > 0) bounded.time_limit_seconds = std::min(limit > 0 ? limit : kSelfCrossingTry, kSelfCrossingTry);
-	try {
-		r.d = decompose(r.prepared.solid, bounded);
-		if (r.prepared.solid.self_intersections == 0 || r.d.tau_convex()) return r;
-		r.fallback = "the mesh intersects itself (" + std::to_string(r.prepared.solid.self_intersections) +
-		             " face pairs) and its parts as given are not all within tau";
-	} catch (const Error& e) {
-		if (e.code != Error::OpenPart) throw;
-		r.fallback = e.what();
-	}
+	const long       crossings = r.prepared.solid.self_intersections;
+	if (crossings > 0) bounded.time_limit_seconds = std::min(limit > 0 ? limit : kSelfCrossingTry, kSelfCrossingTry);
+	// A large solid that crosses itself cannot be searched on a proxy (proxy_search.h), and searched as
+	// it is it would use up the try: it is wrapped at once.
+	if (crossings > 0 && (long) r.prepared.solid.mesh.F.size() > ProxySettings().above)
+		r.fallback = "the mesh intersects itself (" + std::to_string(crossings) + " face pairs) and has more than " +
+		             std::to_string(ProxySettings().above) + " faces";
+	else
+		try {
+			r.d = decompose(r.prepared.solid, bounded);
+			if (crossings == 0 || r.d.tau_convex()) return r;
+			r.fallback = "the mesh intersects itself (" + std::to_string(crossings) + " face pairs) and its parts as given are not all within tau";
+		} catch (const Error& e) {
+			if (e.code != Error::OpenPart) throw;
+			r.fallback = e.what();
+		}
 	PrepareOptions wrap = prepare;
 	wrap.mode           = Preprocessing::AlphaWrap;
 	r.prepared          = prepare_solid(mesh, wrap);

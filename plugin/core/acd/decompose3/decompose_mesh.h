@@ -20,7 +20,8 @@ struct MeshDecomposition
 
 // prepare_solid, then decompose. Under Preprocessing::Auto a valid solid that crosses itself is cut
 // as given for at most kSelfCrossingTry seconds (cuts through a crossing can peel slivers for long);
-// when a cut opens a part there, or its parts fall short of tau, it is alpha wrapped and cut again.
+// when a cut opens a part there, or its parts fall short of tau, it is alpha wrapped and cut again. One
+// with more faces than the proxy search takes (ProxySettings::above) is wrapped without the try.
 // `options_for` gives the options for a prepared solid (tau as a share of its size, say); it is called
 // again for the wrap when the solid as given is given up.
 using OptionsFor = std::function<DecomposeOptions(const PreparedSolid&)>;

@@ -60,7 +60,8 @@ struct Proxy
 };
 
 // The solid decimated to about `faces`, if that is a clean solid (closed, no crossing) within `widest`
-// of it and clearly coarser than it.
+// of it and clearly coarser than it. (A solid that crosses itself is searched as it is: cuts through a
+// decimated crossing open parts far more often than through the crossing itself.)
 std::optional<Proxy> make_proxy(const TriMesh& mesh, int faces, double error, double widest)
 {
 	Decimated d = decimate(mesh, faces, error);
@@ -151,7 +152,14 @@ private:
 		DecomposeOptions po   = o;
 		po.tau                = std::max(o.tau - px->distance, 0.5 * o.tau);   // so that the solid's parts rarely fail where the proxy's pass
 		po.time_limit_seconds = left();
-		Decomposition P       = cut_tree(px->solid, po);
+		Decomposition P;
+		try {
+			P = cut_tree(px->solid, po);
+		}
+		catch (const Error& e) {   // a cut opened a proxy's part (a fold decimation made): search the solid
+			if (e.code != Error::OpenPart) throw;
+			return search_as_is(at);
+		}
 		if (merge) merge_parts(P, o.tau, o.progress, left());
 		absorb(P);
 		std::vector<int>   leaves;

@@ -63,7 +63,7 @@ public:
 	bool round(size_t target)
 	{
 		index_faces();
-		const std::vector<Collapse> order = cheapest();
+		cheapest();
 		locked.assign(V.size(), 0);
 		size_t faces = F.size(), done = 0;
 		for (const Collapse& c : order) {
@@ -98,6 +98,8 @@ private:
 	std::vector<int>     start, incident;   // faces around each vertex (at the round's start)
 	std::vector<char>    dead, locked;
 	mutable std::vector<int> ring[2], opposite, common;   // allowed()'s scratch
+	std::vector<std::pair<int, int>> edges;              // cheapest()'s
+	std::vector<Collapse>            all, order;
 
 	void index_faces()
 	{
@@ -138,23 +140,23 @@ private:
 		return c;
 	}
 
-	// Every edge's collapse within the error bar, cheapest first.
-	std::vector<Collapse> cheapest() const
+	// Every edge's collapse within the error bar, cheapest first (into `order`; the buffers are kept
+	// from round to round, as fresh ones of millions of entries cost more to zero than to fill).
+	void cheapest()
 	{
-		std::vector<std::pair<int, int>> edges;
+		edges.clear();
 		for (const Tri& t : F)
 			for (int k = 0; k < 3; ++k)
 				if (t[k] < t[(k + 1) % 3]) edges.push_back({t[k], t[(k + 1) % 3]});
-		std::vector<Collapse> all(edges.size());
-		const size_t          chunk = 4096;
+		all.resize(edges.size());
+		const size_t chunk = 4096;
 		parallel_for((edges.size() + chunk - 1) / chunk, [&](size_t c) {
 			for (size_t i = c * chunk; i < std::min(edges.size(), (c + 1) * chunk); ++i) all[i] = measure(edges[i].first, edges[i].second);
 		});
-		std::vector<Collapse> out;
+		order.clear();
 		for (const Collapse& c : all)
-			if (c.cost <= bar) out.push_back(c);
-		std::sort(out.begin(), out.end());
-		return out;
+			if (c.cost <= bar) order.push_back(c);
+		std::sort(order.begin(), order.end());
 	}
 
 	template <class Fn> void each_face(int v, Fn fn) const
