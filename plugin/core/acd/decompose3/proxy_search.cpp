@@ -147,7 +147,7 @@ private:
 			if ((int) D.nodes[at].mesh.F.size() <= std::max(ps.above, 2 * faces)) break;
 			px = make_proxy(D.nodes[at].mesh, faces, ps.error * o.tau, ps.widest * o.tau);
 		}
-		if (!px) return search_as_is(at);
+		if (!px) return search_as_is(at, merge);
 		if (D.proxy_searches++ == 0) D.proxy_faces = (int) px->solid.mesh.F.size(), D.proxy_distance = px->distance;
 		DecomposeOptions po   = o;
 		po.tau                = std::max(o.tau - px->distance, 0.5 * o.tau);   // so that the solid's parts rarely fail where the proxy's pass
@@ -158,7 +158,7 @@ private:
 		}
 		catch (const Error& e) {   // a cut opened a proxy's part (a fold decimation made): search the solid
 			if (e.code != Error::OpenPart) throw;
-			return search_as_is(at);
+			return search_as_is(at, merge);
 		}
 		if (merge) merge_parts(P, o.tau, o.progress, left());
 		absorb(P);
@@ -173,7 +173,7 @@ private:
 		for (int l : rest)
 			if (needs_search(D.nodes[l]) && !D.time_limit_reached) {
 				++D.proxy_retries;
-				search_node(l, level, false);
+				search_node(l, level, merge);
 			}
 	}
 
@@ -247,7 +247,7 @@ private:
 		return n;
 	}
 
-	void search_as_is(int at)
+	void search_as_is(int at, bool merge)
 	{
 		Solid s;
 		s.mesh   = D.nodes[at].mesh;
@@ -256,6 +256,7 @@ private:
 		DecomposeOptions eo   = o;
 		eo.time_limit_seconds = left();
 		Decomposition sub     = cut_tree(s, eo);
+		if (merge) merge_parts(sub, o.tau, o.progress, left());
 		absorb(sub);
 		graft(at, sub);
 	}
@@ -269,6 +270,8 @@ private:
 		D.kept_cavities += sub.kept_cavities;
 		D.films_dropped += sub.films_dropped;
 		D.film_volume += sub.film_volume;
+		D.merges += sub.merges;
+		D.merge_time_limit_reached |= sub.merge_time_limit_reached;
 	}
 
 	// The proxy's cut tree on the solid from leaf `at` down: each of its cuts made by its plane on the
@@ -333,7 +336,8 @@ private:
 		return true;
 	}
 
-	// A search of leaf `at` (its root is `at` itself) hung into the tree below it.
+	// A search of leaf `at` (its root is `at` itself, its merged parts after its tree) hung into the tree
+	// below it.
 	void graft(int at, Decomposition& sub)
 	{
 		std::vector<int> id(sub.nodes.size(), at);
@@ -348,6 +352,8 @@ private:
 			Node& n    = D.nodes[id[k]];
 			n.parent   = map(n.parent);
 			n.child[0] = map(n.child[0]), n.child[1] = map(n.child[1]);
+			n.part     = map(n.part);
+			for (int& l : n.merged) l = map(l);
 		}
 		Node& r  = sub.nodes[0];
 		r.parent = D.nodes[at].parent;
