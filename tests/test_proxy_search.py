@@ -32,10 +32,9 @@ def test_a_large_mesh_is_cut_and_certified_on_itself_and_the_same_on_any_thread_
     assert 0 < res["proxy_distance"] < 0.25 * res["tau_model_units"]
     assert res["tau_convex"]
     check_partition(ms, 0, ids, tau_abs=res["tau_model_units"], overlap_samples=200)
-    # About as many parts as the search on a coarse torus of the same shape (no copy below the threshold).
+    # Below the threshold the mesh itself is searched.
     Vc, Fc = torus(R=2.0, r=0.5, nu=100, nv=40)
-    _, coarse, coarse_ids = run(Vc, Fc, tau=5.0)
+    _, coarse, _ = run(Vc, Fc, tau=5.0)
     assert coarse["proxy_faces"] == 0
-    assert abs(len(ids) - len(coarse_ids)) <= max(2, 0.2 * len(coarse_ids))
     ms2, _, ids2 = run(V, F, tau=5.0, threads=2)
     assert layers(ms2, ids2) == layers(ms, ids)

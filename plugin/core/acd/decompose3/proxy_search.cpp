@@ -136,11 +136,18 @@ private:
 
 	bool needs_search(const Node& n) const { return !certified(n, o.tau) || (!keep && n.cavities > 0); }
 
+	// The stages after the proxy's search take time on a large mesh: say which, and hear a cancel.
+	void report(const char* msg) const
+	{
+		if (o.progress && !o.progress(99, msg)) throw Error(Error::Cancelled, "The decomposition was cancelled.");
+	}
+
 	// Leaf `at` searched on the coarsest proxy from `level` on that is clean and near enough, else as it
 	// is: the proxy cut (and merged), its cuts replayed on the solid, its merged parts united on the
 	// solid, every part certified on the solid, and the parts that fail searched again.
 	void search_node(int at, int level, bool merge)
 	{
+		report("Simplifying the mesh for the search");
 		std::optional<Proxy> px;
 		for (; level < ps.levels && !px; ++level) {
 			const int faces = ps.faces << (2 * level);
@@ -164,7 +171,9 @@ private:
 		absorb(P);
 		std::vector<int>   leaves;
 		std::map<int, int> reached;   // the proxy's leaves the replay reached: their nodes in D
+		report("Cutting the mesh by the planes found on its simplified copy");
 		replay(at, P, px->distance, leaves, reached);
+		report("Certifying every part on the mesh itself");
 		const std::vector<char> united = unite_parts(P, reached);
 		std::vector<int> rest;
 		for (int l : leaves)
