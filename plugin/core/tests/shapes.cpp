@@ -1,6 +1,7 @@
 #include "shapes.h"
 #include "acd/mesh/measures.h"
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 
@@ -148,6 +149,25 @@ TriMesh inverted(TriMesh m)
 {
 	for (auto& f : m.F) std::swap(f[1], f[2]);
 	return m;
+}
+
+TriMesh subdivided(const TriMesh& m)
+{
+	TriMesh                            out = m;
+	std::map<std::pair<int, int>, int> mid;
+	const auto at = [&](int a, int b) {
+		const auto key = std::minmax(a, b);
+		auto       it  = mid.find(key);
+		if (it != mid.end()) return it->second;
+		out.V.push_back(0.5 * (m.V[a] + m.V[b]));
+		return mid[key] = (int) out.V.size() - 1;
+	};
+	out.F.clear();
+	for (const acd::Tri& t : m.F) {
+		const int a = at(t[0], t[1]), b = at(t[1], t[2]), c = at(t[2], t[0]);
+		out.F.insert(out.F.end(), {{t[0], a, c}, {a, t[1], b}, {c, b, t[2]}, {a, b, c}});
+	}
+	return out;
 }
 
 std::vector<Eigen::Vector2d> l_shape() { return {{0, 0}, {2, 0}, {2, 1}, {1, 1}, {1, 2}, {0, 2}}; }

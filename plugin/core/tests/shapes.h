@@ -15,6 +15,8 @@ TriMesh torus(double R, double r, int nu, int nv);
 TriMesh lathe(const std::vector<Eigen::Vector2d>& profile, int nu);
 TriMesh merge(const TriMesh& a, const TriMesh& b);
 TriMesh inverted(TriMesh m);
+// Every face split in four at its edges' midpoints (shared midpoints shared): the same shape, 4x the faces.
+TriMesh subdivided(const TriMesh& m);
 std::vector<Eigen::Vector2d> l_shape();   // (0,0)-(2,0)-(2,1)-(1,1)-(1,2)-(0,2)
 std::vector<Eigen::Vector2d> u_shape();
 std::vector<Eigen::Vector2d> plus_shape();

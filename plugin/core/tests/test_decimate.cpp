@@ -5,7 +5,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <map>
 #include <set>
 #include <utility>
 
@@ -39,29 +38,6 @@ long euler(const TriMesh& m)
 	return (long) verts.size() - (long) edges.size() + (long) m.F.size();
 }
 
-// Every face split in four at its edges' midpoints (shared midpoints shared): the same shape.
-TriMesh subdivided(const TriMesh& m)
-{
-	TriMesh                            out = m;
-	std::map<std::pair<int, int>, int> mid;
-	const auto at = [&](int a, int b) {
-		const auto key = std::minmax(a, b);
-		auto       it  = mid.find(key);
-		if (it != mid.end()) return it->second;
-		out.V.push_back(0.5 * (m.V[a] + m.V[b]));
-		return mid[key] = (int) out.V.size() - 1;
-	};
-	out.F.clear();
-	for (const Tri& t : m.F) {
-		const int a = at(t[0], t[1]), b = at(t[1], t[2]), c = at(t[2], t[0]);
-		out.F.push_back({t[0], a, c});
-		out.F.push_back({a, t[1], b});
-		out.F.push_back({c, b, t[2]});
-		out.F.push_back({a, b, c});
-	}
-	return out;
-}
-
 } // namespace
 
 TEST_CASE("decimate: a fine torus to a twentieth of its faces stays a closed torus near the surface")
@@ -91,7 +67,7 @@ TEST_CASE("decimate: a flat-sided solid keeps its shape exactly; a tiny error ba
 	// A box whose sides are finely triangulated (midpoints, four times): collapses on the flat sides
 	// cost nothing, so the box comes back with the same volume, every vertex on a side.
 	TriMesh box = shapes::box({0, 0, 0}, {1, 1, 1});
-	for (int k = 0; k < 4; ++k) box = subdivided(box);
+	for (int k = 0; k < 4; ++k) box = shapes::subdivided(box);
 	const Decimated d   = decimate(box, 12, 1e-6);
 	CHECK(d.mesh.F.size() < box.F.size() / 4);
 	CHECK_NEAR(volume(d.mesh), 1.0, 1e-9);

@@ -5,7 +5,6 @@
 #include "shapes.h"
 
 #include <algorithm>
-#include <map>
 
 using namespace acd;
 
@@ -15,23 +14,7 @@ namespace {
 TriMesh fine_u()
 {
 	TriMesh m = shapes::extrude(shapes::u_shape(), -0.5, 0.5);
-	for (int round = 0; round < 4; ++round) {
-		TriMesh out = m;
-		out.F.clear();
-		std::map<std::pair<int, int>, int> mid;
-		const auto at = [&](int a, int b) {
-			const auto key = std::minmax(a, b);
-			auto       it  = mid.find(key);
-			if (it != mid.end()) return it->second;
-			out.V.push_back(0.5 * (m.V[a] + m.V[b]));
-			return mid[key] = (int) out.V.size() - 1;
-		};
-		for (const Tri& t : m.F) {
-			const int a = at(t[0], t[1]), b = at(t[1], t[2]), c = at(t[2], t[0]);
-			out.F.insert(out.F.end(), {{t[0], a, c}, {a, t[1], b}, {c, b, t[2]}, {a, b, c}});
-		}
-		m = std::move(out);
-	}
+	for (int round = 0; round < 4; ++round) m = shapes::subdivided(m);
 	return m;
 }
 
