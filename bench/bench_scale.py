@@ -32,32 +32,27 @@ CACHE = pathlib.Path(os.environ.get("XDG_CACHE_HOME", pathlib.Path.home() / ".ca
 METHODS = [("ours", "defaults", {}), ("coacd", "threshold 0.05", {"threshold": 0.05}),
            ("vhacd4", "default (400k voxels)", {"resolution": 400000})]
 
-# Meshes are made in a child process: pymeshlab's filters hold the GIL and much memory.
-MAKE_SCAN = textwrap.dedent("""
+# Meshes are made in a child process: pymeshlab's filters hold the GIL and much memory. A series is its
+# first mesh (the watertight bunny scan, or the CAD link as given) and three subdivisions of it: Loop for
+# the scan, midpoints for CAD (the same flat faces).
+MAKE_SERIES = textwrap.dedent("""
     import pathlib, sys, pymeshlab
-    out = pathlib.Path(sys.argv[1])
-    src = pathlib.Path(pymeshlab.__file__).parent / "tests" / "sample_meshes" / "bunny.obj"
+    series, src, out = sys.argv[1], sys.argv[2], pathlib.Path(sys.argv[3])
     ms = pymeshlab.MeshSet()
-    ms.load_new_mesh(str(src))
-    ms.generate_surface_reconstruction_screened_poisson(depth=8)
-    ms.meshing_decimation_quadric_edge_collapse(targetfacenum=23000, preservetopology=True)
-    ms.meshing_remove_unreferenced_vertices()
+    if series == "scan":
+        ms.load_new_mesh(str(pathlib.Path(pymeshlab.__file__).parent / "tests" / "sample_meshes" / "bunny.obj"))
+        ms.generate_surface_reconstruction_screened_poisson(depth=8)
+        ms.meshing_decimation_quadric_edge_collapse(targetfacenum=23000, preservetopology=True)
+        ms.meshing_remove_unreferenced_vertices()
+        subdivide = ms.meshing_surface_subdivision_loop
+    else:
+        ms.load_new_mesh(src)
+        ms.meshing_remove_duplicate_vertices()
+        subdivide = ms.meshing_surface_subdivision_midpoint
     for k in range(4):
         if k:
-            ms.meshing_surface_subdivision_loop(iterations=1, threshold=pymeshlab.PercentageValue(0))
-        ms.save_current_mesh(str(out / f"scan_{k}.obj"), save_vertex_normal=False, save_vertex_color=False,
-                             save_wedge_texcoord=False, save_face_color=False)
-""")
-MAKE_CAD = textwrap.dedent("""
-    import pathlib, sys, pymeshlab
-    src, out = sys.argv[1], pathlib.Path(sys.argv[2])
-    ms = pymeshlab.MeshSet()
-    ms.load_new_mesh(src)
-    ms.meshing_remove_duplicate_vertices()
-    for k in range(4):
-        if k:
-            ms.meshing_surface_subdivision_midpoint(iterations=1, threshold=pymeshlab.PercentageValue(0))
-        ms.save_current_mesh(str(out / f"cad_{k}.obj"), save_vertex_normal=False, save_vertex_color=False,
+            subdivide(iterations=1, threshold=pymeshlab.PercentageValue(0))
+        ms.save_current_mesh(str(out / f"{series}_{k}.obj"), save_vertex_normal=False, save_vertex_color=False,
                              save_wedge_texcoord=False, save_face_color=False)
 """)
 
@@ -90,13 +85,13 @@ def series(which):
     out = []
     if "scan" in which:
         if not (CACHE / "scan_3.obj").exists():
-            subprocess.run([sys.executable, "-c", MAKE_SCAN, str(CACHE)], check=True)
+            subprocess.run([sys.executable, "-c", MAKE_SERIES, "scan", "", str(CACHE)], check=True)
         out += [("scan", CACHE / f"scan_{k}.obj", None) for k in range(4)]
     if "CAD" in which:
         link = cad_link()
         made = CACHE / "cad_link.txt"
         if not made.exists() or made.read_text().strip() != str(link) or not (CACHE / "cad_3.obj").exists():
-            subprocess.run([sys.executable, "-c", MAKE_CAD, str(link), str(CACHE)], check=True)
+            subprocess.run([sys.executable, "-c", MAKE_SERIES, "cad", str(link), str(CACHE)], check=True)
             made.write_text(str(link) + "\n")
         out += [("CAD", CACHE / f"cad_{k}.obj", link) for k in range(4)]
     return out

@@ -238,12 +238,10 @@ struct Measure
 		std::vector<PathTask> tasks = path_tasks();
 		on_path.assign(3 * nf, 0);
 		// Paths are independent: search them on all cores in chunks, then record them in order.
-		const size_t chunk = 64;
-		parallel_for((tasks.size() + chunk - 1) / chunk, [&](size_t c) {
+		parallel_for_chunked(tasks.size(), 64, [&](size_t i) {
 			thread_local PathSearch search;
 			search.resize(nv);
-			for (size_t i = c * chunk; i < std::min(tasks.size(), (c + 1) * chunk); ++i)
-				if (!search.run(m, topo, tasks[i].p, tasks[i].q, tasks[i].path)) tasks[i].path.clear();
+			if (!search.run(m, topo, tasks[i].p, tasks[i].q, tasks[i].path)) tasks[i].path.clear();
 		});
 		for (const PathTask& t : tasks)
 			for (size_t i = 0; i + 1 < t.path.size(); ++i) {

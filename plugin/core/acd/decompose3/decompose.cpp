@@ -105,6 +105,18 @@ struct Measured
 	const TriMesh& surface(const TriMesh& m) const { return outer.F.empty() ? m : outer; }
 };
 
+// A node's measures from its mesh's; its notch is kept when the mesh has none.
+void take_measures(Node& n, const Measured& ms)
+{
+	n.concavity           = ms.rep.max_concavity;
+	n.hull_distance       = ms.rep.hull_reach;
+	n.hull_distance_bound = ms.rep.hull_reach_bound;
+	n.volume              = signed_volume(n.mesh);
+	n.notch_count         = ms.rep.notches;
+	n.cavities            = (int) ms.cavities.size();
+	if (ms.rep.max_vertex >= 0) n.notch = ms.surface(n.mesh).V[ms.rep.max_vertex];
+}
+
 } // namespace
 
 std::vector<int> Decomposition::leaves() const
@@ -237,13 +249,7 @@ private:
 	{
 		Node& n = D.nodes[id];
 		if (!ms) ms = std::make_shared<const Measured>(n.mesh, keep, opt.tau);
-		n.concavity           = ms->rep.max_concavity;
-		n.hull_distance       = ms->rep.hull_reach;
-		n.hull_distance_bound = ms->rep.hull_reach_bound;
-		n.volume              = signed_volume(n.mesh);
-		n.notch_count         = ms->rep.notches;
-		n.cavities            = (int) ms->cavities.size();
-		if (ms->rep.max_vertex >= 0) n.notch = ms->surface(n.mesh).V[ms->rep.max_vertex];
+		take_measures(n, *ms);
 		if (rec.needs_cut(n)) measured[id] = std::move(ms);
 	}
 
@@ -618,14 +624,8 @@ Decomposition cut_tree(const Solid& solid, const DecomposeOptions& opt)
 
 void measure_node(Node& n, bool keep_cavities, double tau)
 {
-	const Measured ms(n.mesh, keep_cavities, tau);
-	n.concavity           = ms.rep.max_concavity;
-	n.hull_distance       = ms.rep.hull_reach;
-	n.hull_distance_bound = ms.rep.hull_reach_bound;
-	n.volume              = signed_volume(n.mesh);
-	n.notch_count         = ms.rep.notches;
-	n.cavities            = (int) ms.cavities.size();
-	n.notch               = ms.rep.max_vertex >= 0 ? ms.surface(n.mesh).V[ms.rep.max_vertex] : Vec3::Zero();
+	n.notch = Vec3::Zero();
+	take_measures(n, Measured(n.mesh, keep_cavities, tau));
 }
 
 Decomposition decompose(const Solid& solid, const DecomposeOptions& opt)

@@ -21,9 +21,10 @@ MeshDecomposition decompose_mesh(const TriMesh& mesh, const PrepareOptions& prep
 	if (crossings > 0) bounded.time_limit_seconds = std::min(limit > 0 ? limit : kSelfCrossingTry, kSelfCrossingTry);
 	// A large solid that crosses itself cannot be searched on a proxy (proxy_search.h), and searched as
 	// it is it would use up the try: it is wrapped at once.
-	if (crossings > 0 && (long) r.prepared.solid.mesh.F.size() > ProxySettings().above)
+	const int above = ProxySettings().above;
+	if (crossings > 0 && (long) r.prepared.solid.mesh.F.size() > above)
 		r.fallback = "the mesh intersects itself (" + std::to_string(crossings) + " face pairs) and has more than " +
-		             std::to_string(ProxySettings().above) + " faces";
+		             std::to_string(above) + " faces";
 	else
 		try {
 			r.d = decompose(r.prepared.solid, bounded);

@@ -16,8 +16,8 @@
 
 #include <algorithm>
 #include <chrono>
-#include <map>
 #include <array>
+#include <map>
 #include <optional>
 
 namespace acd {
@@ -44,11 +44,9 @@ double distance_to(const TriMesh& proxy, const TriMesh& solid)
 	const size_t        step = std::max<size_t>(1, solid.V.size() / kDistanceSamples);
 	const size_t        n    = (solid.V.size() + step - 1) / step;
 	std::vector<double> d(n, 0);
-	parallel_for((n + 4095) / 4096, [&](size_t c) {
-		for (size_t i = c * 4096; i < std::min(n, (c + 1) * 4096); ++i) {
-			const Vec3& v = solid.V[i * step];
-			d[i]          = tree.squared_distance(K::Point_3(v.x(), v.y(), v.z()));
-		}
+	parallel_for_chunked(n, 4096, [&](size_t i) {
+		const Vec3& v = solid.V[i * step];
+		d[i]          = tree.squared_distance(K::Point_3(v.x(), v.y(), v.z()));
 	});
 	return std::sqrt(*std::max_element(d.begin(), d.end()));
 }
@@ -108,9 +106,11 @@ public:
 	{
 	}
 
-	// The proxy's search and merge, replayed and certified on the solid, from the root down.
+	// A small solid (or one with a max_parts bound) searched as it is; a large one on a proxy, replayed
+	// and certified on the solid from the root down.
 	Decomposition run(const Solid& solid)
 	{
+		if (o.max_parts > 0 || (int) solid.mesh.F.size() <= ps.above) return cut_and_merge(solid, o.merge_parts);
 		D.tau = o.tau;
 		Node root;
 		root.path = "0";
@@ -147,11 +147,11 @@ private:
 	// solid, every part certified on the solid, and the parts that fail searched again.
 	void search_node(int at, int level, bool merge)
 	{
-		report("Simplifying the mesh for the search");
 		std::optional<Proxy> px;
 		for (; level < ps.levels && !px; ++level) {
 			const int faces = ps.faces << (2 * level);
 			if ((int) D.nodes[at].mesh.F.size() <= std::max(ps.above, 2 * faces)) break;
+			report("Simplifying the mesh for the search");
 			px = make_proxy(D.nodes[at].mesh, faces, ps.error * o.tau, ps.widest * o.tau);
 		}
 		if (!px) return search_as_is(at, merge);
@@ -262,12 +262,19 @@ private:
 		s.mesh   = D.nodes[at].mesh;
 		s.volume = signed_volume(s.mesh);
 		face_components(s.mesh, &s.shells);
+		Decomposition sub = cut_and_merge(s, merge);
+		absorb(sub);
+		graft(at, sub);
+	}
+
+	// The search on `s` itself (and its merge), within the time left: the merge gets what the cuts left.
+	Decomposition cut_and_merge(const Solid& s, bool merge) const
+	{
 		DecomposeOptions eo   = o;
 		eo.time_limit_seconds = left();
 		Decomposition sub     = cut_tree(s, eo);
 		if (merge) merge_parts(sub, o.tau, o.progress, left());
-		absorb(sub);
-		graft(at, sub);
+		return sub;
 	}
 
 	// A search's limits and counts into the tree.
@@ -377,16 +384,6 @@ private:
 
 Decomposition search(const Solid& solid, const DecomposeOptions& o, const ProxySettings& ps)
 {
-	if (o.max_parts > 0 || (int) solid.mesh.F.size() <= ps.above) {
-		const auto    start = std::chrono::steady_clock::now();
-		Decomposition D     = cut_tree(solid, o);
-		if (o.merge_parts) {
-			// The time limit bounds the cuts and the merge together; the merge gets what the cuts left.
-			const double spent = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-			merge_parts(D, o.tau, o.progress, o.time_limit_seconds > 0 ? std::max(o.time_limit_seconds - spent, 1e-9) : 0);
-		}
-		return D;
-	}
 	return ProxySearch(o, ps).run(solid);
 }
 

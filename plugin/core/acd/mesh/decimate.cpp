@@ -135,8 +135,10 @@ private:
 			const Vec3 p = -q.A.inverse() * q.b;
 			if ((p - mid).norm() <= len) c = {q.mean(p), u, v, p};
 		}
-		for (const Vec3& p : {V[u], V[v], mid})
-			if (q.mean(p) < c.cost) c = {q.mean(p), u, v, p};
+		for (const Vec3& p : {V[u], V[v], mid}) {
+			const double cost = q.mean(p);
+			if (cost < c.cost) c = {cost, u, v, p};
+		}
 		return c;
 	}
 
@@ -149,10 +151,7 @@ private:
 			for (int k = 0; k < 3; ++k)
 				if (t[k] < t[(k + 1) % 3]) edges.push_back({t[k], t[(k + 1) % 3]});
 		all.resize(edges.size());
-		const size_t chunk = 4096;
-		parallel_for((edges.size() + chunk - 1) / chunk, [&](size_t c) {
-			for (size_t i = c * chunk; i < std::min(edges.size(), (c + 1) * chunk); ++i) all[i] = measure(edges[i].first, edges[i].second);
-		});
+		parallel_for_chunked(edges.size(), 4096, [&](size_t i) { all[i] = measure(edges[i].first, edges[i].second); });
 		order.clear();
 		for (const Collapse& c : all)
 			if (c.cost <= bar) order.push_back(c);

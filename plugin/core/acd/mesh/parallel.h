@@ -70,4 +70,14 @@ void parallel_for(size_t n, Fn fn)
 	if (error) std::rethrow_exception(error);
 }
 
+// parallel_for over 0..n-1 handed out `chunk` at a time: for many small fn(i), where taking one i at
+// a time would cost more than fn itself.
+template <class Fn>
+void parallel_for_chunked(size_t n, size_t chunk, Fn fn)
+{
+	parallel_for((n + chunk - 1) / chunk, [&](size_t c) {
+		for (size_t i = c * chunk; i < std::min(n, (c + 1) * chunk); ++i) fn(i);
+	});
+}
+
 } // namespace acd

@@ -32,6 +32,13 @@ std::vector<std::pair<EdgeKey, int>> sorted_directed_edges(const std::vector<Tri
 	std::sort(e.begin(), e.end());
 	return e;
 }
+// The uses of directed edge k in sorted_directed_edges' array, with their faces.
+std::pair<std::vector<std::pair<EdgeKey, int>>::const_iterator, std::vector<std::pair<EdgeKey, int>>::const_iterator>
+uses_of(const std::vector<std::pair<EdgeKey, int>>& edges, EdgeKey k)
+{
+	return {std::lower_bound(edges.begin(), edges.end(), std::make_pair(k, INT_MIN)),
+	        std::upper_bound(edges.begin(), edges.end(), std::make_pair(k, INT_MAX))};
+}
 
 [[noreturn]] void invalid(const std::string& msg, Error::Code code = Error::Unspecified, long count = 0)
 {
@@ -151,11 +158,6 @@ void checked_faces(const TriMesh& in, const std::vector<int>& remap, Solid& s)
 void check_edges(const TriMesh& m)
 {
 	const std::vector<std::pair<EdgeKey, int>> directed = sorted_directed_edges(m.F);
-	const auto uses = [&](EdgeKey k) {
-		const auto lo = std::lower_bound(directed.begin(), directed.end(), std::make_pair(k, INT_MIN));
-		const auto hi = std::upper_bound(lo, directed.end(), std::make_pair(k, INT_MAX));
-		return (int) (hi - lo);
-	};
 	long boundary = 0, nonmanifold = 0, misoriented = 0;
 	for (size_t i = 0; i < directed.size();) {
 		const EdgeKey e = directed[i].first;
@@ -163,7 +165,8 @@ void check_edges(const TriMesh& m)
 		while (j < directed.size() && directed[j].first == e) ++j;
 		const int n = (int) (j - i), a = (int) (e >> 32), b = (int) (e & 0xffffffffu);
 		i           = j;
-		const int total = n + uses(edge_key(b, a));
+		const auto back  = uses_of(directed, edge_key(b, a));
+		const int  total = n + (int) (back.second - back.first);
 		if (total == 1) ++boundary;
 		else if (total > 2) {
 			if (a < b) ++nonmanifold;
@@ -212,9 +215,9 @@ void split_vertex_fans(Solid& s)
 				s.mesh.F[cf][ck]  = target;
 				// this face holds the directed edge (prev -> v); the next face holds (v -> prev)
 				const int prev = orig[cf][(ck + 2) % 3];
-				const auto it = std::lower_bound(face_of.begin(), face_of.end(), std::make_pair(edge_key(v, prev), INT_MIN));
-				if (it == face_of.end() || it->first != edge_key(v, prev)) break;
-				cf = it->second;
+				const auto next = uses_of(face_of, edge_key(v, prev));
+				if (next.first == next.second) break;
+				cf = next.first->second;
 				ck = 0;
 				while (orig[cf][ck] != v) ++ck;
 			}
