@@ -198,8 +198,11 @@ void FilterACD::log_prepared(const acd::PreparedSolid& p)
 		log("Not decomposable as given (%s) It is alpha wrapped: %d wrap(s), alpha %g%% kept, holding %.0f%% of the "
 		    "input's interior.", p.reason.c_str(), p.tries, p.alpha / p.size * 100, 100 * p.inside);
 	if (p.done == acd::PreparedSolid::Wrapped)
-		log("Alpha wrap: %zu faces in, %zu out; the wrap lies about %g outside the input (alpha %g)", p.faces_in,
-		    s.mesh.F.size(), p.offset, p.alpha);
+		log("Alpha wrap: %zu faces in, %zu out; the wrap lies about %g outside the input (alpha %g); measured at "
+		    "vertices, it reaches %g from the input and the input %g from it%s", p.faces_in, s.mesh.F.size(), p.offset,
+		    p.alpha, p.to_input, p.from_input,
+		    p.capped ? ". Its openings were closed along the surface the input's winding number continues them by."
+		    : p.skin ? ". The input encloses no solid: the wrap is a thin skin about it." : "");
 	if (s.self_intersections > 0) log("Warning: %s", qUtf8Printable(self_intersection_message(s.self_intersections)));
 	if (s.reoriented_shells > 0)
 		log("%d of %d shells were oriented against their nesting (outer shells outward, cavities inward) and "
@@ -276,6 +279,12 @@ FilterACD::decompose(const RichParameterList& par, MeshDocument& md, vcg::CallBa
 		{"welded_vertices", run.prepared.welded},
 		{"preprocessing_done", (int) run.prepared.done},   // 0 as given, 1 welded, 2 alpha wrapped
 		{"self_crossing_wrapped", !run.fallback.empty()},
+		{"wrap_capped", run.prepared.capped},   // openings closed along the input's winding-number level set
+		{"wrap_skin", run.prepared.skin},       // the input encloses no solid: the wrap is a skin about it
+		{"wrap_cap_share", run.prepared.cap_share},   // share of that level set spanning openings
+		{"preprocessing_time", run.prepared.seconds},
+		{"solid_to_input", run.prepared.to_input},     // model units, measured at the solid's vertices
+		{"input_to_solid", run.prepared.from_input},   // and at the input's
 		{"not_as_given_code", run.prepared.reason_code},   // why not as given: acd::Error::Code (0: it was)
 		{"not_as_given_count", (int) run.prepared.reason_count},
 		{"self_intersections", (int) s.self_intersections},

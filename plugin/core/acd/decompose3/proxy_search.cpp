@@ -4,15 +4,11 @@
 #include "acd/decompose3/merge.h"
 #include "acd/mesh/decimate.h"
 #include "acd/mesh/measures.h"
+#include "acd/mesh/nearest.h"
 #include "acd/mesh/parallel.h"
 #include "acd/solid/glue.h"
 #include "acd/solid/separate.h"
 #include "acd/solid/solid.h"
-
-#include <CGAL/AABB_traits_3.h>
-#include <CGAL/AABB_tree.h>
-#include <CGAL/AABB_triangle_primitive_3.h>
-#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 
 #include <algorithm>
 #include <chrono>
@@ -24,31 +20,13 @@ namespace acd {
 
 namespace {
 
-using K         = CGAL::Exact_predicates_inexact_constructions_kernel;
-using Triangles = std::vector<K::Triangle_3>;
-using AABB      = CGAL::AABB_tree<CGAL::AABB_traits_3<K, CGAL::AABB_triangle_primitive_3<K, Triangles::const_iterator>>>;
-
 constexpr size_t kDistanceSamples = 200000;   // the solid's vertices the proxy's distance is measured at
 
 // How far the solid's surface lies from the proxy's: the largest distance from the solid's vertices
 // (every one, or evenly spaced ones on a big solid) to the proxy.
 double distance_to(const TriMesh& proxy, const TriMesh& solid)
 {
-	Triangles tris;
-	for (const Tri& t : proxy.F) {
-		const auto p = [&](int k) { return K::Point_3(proxy.V[t[k]].x(), proxy.V[t[k]].y(), proxy.V[t[k]].z()); };
-		tris.emplace_back(p(0), p(1), p(2));
-	}
-	AABB tree(tris.begin(), tris.end());
-	tree.accelerate_distance_queries();
-	const size_t        step = std::max<size_t>(1, solid.V.size() / kDistanceSamples);
-	const size_t        n    = (solid.V.size() + step - 1) / step;
-	std::vector<double> d(n, 0);
-	parallel_for_chunked(n, 4096, [&](size_t i) {
-		const Vec3& v = solid.V[i * step];
-		d[i]          = tree.squared_distance(K::Point_3(v.x(), v.y(), v.z()));
-	});
-	return std::sqrt(*std::max_element(d.begin(), d.end()));
+	return NearestOnSurface(proxy).farthest(solid.V, kDistanceSamples);
 }
 
 struct Proxy

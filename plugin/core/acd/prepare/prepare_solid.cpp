@@ -3,7 +3,9 @@
 #include "acd/prepare/alpha_wrap.h"
 #include "acd/prepare/wrap_solid.h"
 
+#include <chrono>
 #include <cstdio>
+#include <tuple>
 
 namespace acd {
 
@@ -48,6 +50,7 @@ void wrapped(PreparedSolid& p, TriMesh wrap, double alpha, double share)
 
 PreparedSolid prepare_solid(const TriMesh& mesh, const PrepareOptions& o)
 {
+	const auto    t0 = std::chrono::steady_clock::now();
 	PreparedSolid p;
 	p.faces_in = mesh.F.size();
 	if (o.mode == Preprocessing::None) p.solid = make_solid(mesh);
@@ -55,7 +58,9 @@ PreparedSolid prepare_solid(const TriMesh& mesh, const PrepareOptions& o)
 		p.size   = finite_size(mesh);
 		p.offset = o.offset * p.size;
 		if (o.mode == Preprocessing::AlphaWrap) {
-			wrapped(p, alpha_wrap(mesh, o.alpha * p.size, p.offset), o.alpha * p.size, o.alpha);
+			TriMesh wrap = alpha_wrap(mesh, o.alpha * p.size, p.offset);
+			std::tie(p.to_input, p.from_input) = wrap_distances(wrap, mesh, NearestOnSurface(mesh));
+			wrapped(p, std::move(wrap), o.alpha * p.size, o.alpha);
 			p.tries = 1;
 		}
 		else {
@@ -65,6 +70,11 @@ PreparedSolid prepare_solid(const TriMesh& mesh, const PrepareOptions& o)
 			p.reason_count = w.reason_count;
 			p.tries  = w.tries;
 			p.inside = w.inside;
+			p.capped = w.capped;
+			p.skin   = w.skin;
+			p.cap_share  = w.cap_share;
+			p.to_input   = w.to_input;
+			p.from_input = w.from_input;
 			if (w.wrapped) wrapped(p, std::move(w.mesh), w.alpha, w.alpha / p.size);
 			else {
 				p.solid  = w.solid ? std::move(*w.solid) : make_solid(w.mesh);
@@ -75,6 +85,7 @@ PreparedSolid prepare_solid(const TriMesh& mesh, const PrepareOptions& o)
 	}
 	if (o.refuse_self_intersection && p.solid.self_intersections > 0)
 		throw Error(Error::InvalidInput, "The mesh intersects itself.", Error::SelfIntersection, p.solid.self_intersections);
+	p.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 	return p;
 }
 
@@ -82,7 +93,9 @@ std::string describe(const PreparedSolid& p)
 {
 	char buf[64];
 	if (p.done == PreparedSolid::Welded) std::snprintf(buf, sizeof buf, "welded %d vertices", p.welded);
-	else if (p.done == PreparedSolid::Wrapped) std::snprintf(buf, sizeof buf, "alpha_wrap %.3g%%", 100 * p.alpha_share);
+	else if (p.done == PreparedSolid::Wrapped)
+		std::snprintf(buf, sizeof buf, "alpha_wrap %.3g%%%s", 100 * p.alpha_share,
+		              p.capped ? ", openings capped" : p.skin ? ", a skin" : "");
 	else std::snprintf(buf, sizeof buf, "as given");
 	return buf;
 }

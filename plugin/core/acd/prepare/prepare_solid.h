@@ -44,8 +44,14 @@ struct PreparedSolid
 	double      offset  = 0;      // the wrap's offset, model units
 	double      inside  = 1;      // share of the input's interior samples inside the wrap kept
 	int         tries   = 0;      // wraps computed
+	bool        capped  = false;  // openings closed along the input's winding-number level set
+	bool        skin    = false;  // the input encloses no solid: the wrap is a thin skin about it
+	double      cap_share  = 0;   // share of that level set spanning openings
+	double      to_input   = 0;   // largest distance from the solid's vertices to the input (model units)
+	double      from_input = 0;   // and from the input's vertices to the solid (0 when as given)
 	double      size    = 0;      // enclosing diameter of the input's finite vertices
 	size_t      faces_in = 0;
+	double      seconds  = 0;     // the preprocessing's wall time
 	std::string reason;           // why the input was not used as given
 	int         reason_code  = 0; // that error's Error::Code and count
 	long        reason_count = 0;

@@ -1,6 +1,10 @@
 #include "acd/prepare/wrap_solid.h"
 
 #include "acd/prepare/alpha_wrap.h"
+#include "acd/prepare/winding_caps.h"
+#include "acd/mesh/nearest.h"
+#include "acd/mesh/orient.h"
+#include "acd/mesh/winding_number.h"
 #include "acd/mesh/measures.h"
 #include "acd/solid/solid.h"
 #include "acd/mesh/weld.h"
@@ -8,56 +12,35 @@
 #include <algorithm>
 #include <cmath>
 #include <random>
+#include <tuple>
 #include <unordered_map>
 
 namespace acd {
 
 std::vector<double> winding_numbers(const TriMesh& surface, const std::vector<Vec3>& points)
 {
-	std::vector<double> w(points.size(), 0.0);
-	for (size_t i = 0; i < points.size(); ++i) {
-		double sum = 0;   // solid angles, Van Oosterom and Strackee's formula
-		for (const Tri& t : surface.F) {
-			const Vec3   a = surface.V[t[0]] - points[i], b = surface.V[t[1]] - points[i], c = surface.V[t[2]] - points[i];
-			const double la = a.norm(), lb = b.norm(), lc = c.norm();
-			const double num = a.dot(b.cross(c));
-			const double den = la * lb * lc + a.dot(b) * lc + b.dot(c) * la + c.dot(a) * lb;
-			if (std::isfinite(num) && std::isfinite(den)) sum += 2 * std::atan2(num, den);
-		}
-		w[i] = sum / (4 * M_PI);
-	}
-	return w;
+	return WindingNumber(surface).at(points);
 }
 
 namespace {
 
 // Points of the input's bounding box that its winding number places inside (|w| > 1/2: the input's
 // orientation is not trusted), drawn from a fixed seed so that the choice is repeatable.
-std::vector<Vec3> interior_samples(const TriMesh& in, int count)
+std::vector<Vec3> interior_samples(const TriMesh& in, const WindingNumber& wn, int count)
 {
-	Vec3 lo = Vec3::Constant(INFINITY), hi = Vec3::Constant(-INFINITY);
-	for (const Tri& t : in.F)
-		for (int v : t)
-			if (v >= 0 && v < (int) in.V.size() && in.V[v].allFinite()) {
-				lo = lo.cwiseMin(in.V[v]);
-				hi = hi.cwiseMax(in.V[v]);
-			}
+	Eigen::AlignedBox3d box;
+	for (const Vec3& v : in.V)
+		if (v.allFinite()) box.extend(v);
 	std::vector<Vec3> pts;
-	if (!(lo.array() <= hi.array()).all()) return pts;
+	if (box.isEmpty()) return pts;
+	const Vec3                             lo = box.min(), hi = box.max();
 	std::mt19937                           rng(12345);
 	std::uniform_real_distribution<double> u(0.0, 1.0);
 	for (int i = 0; i < count; ++i) pts.push_back(lo + (hi - lo).cwiseProduct(Vec3(u(rng), u(rng), u(rng))));
-	TriMesh finite;   // faces with a vertex out of range or not finite do not count
-	finite.V = in.V;
-	for (const Tri& t : in.F) {
-		bool ok = true;
-		for (int v : t) ok = ok && v >= 0 && v < (int) in.V.size() && in.V[v].allFinite();
-		if (ok) finite.F.push_back(t);
-	}
-	const std::vector<double> w = winding_numbers(finite, pts);
+	const std::vector<double> w = wn.at(pts);
 	std::vector<Vec3>         inside;
 	for (size_t i = 0; i < pts.size(); ++i)
-		if (std::abs(w[i]) > 0.5) inside.push_back(pts[i]);
+		if (std::abs(w[i]) > 0.6) inside.push_back(pts[i]);   // clearly inside: near a sheet |w| is about 1/2
 	return inside;
 }
 
@@ -70,57 +53,136 @@ double share_inside(const TriMesh& wrap, const std::vector<Vec3>& pts)
 	return double(n) / pts.size();
 }
 
+void keep(WrapSolidResult& r, TriMesh w, double alpha, double share)
+{
+	r.mesh   = std::move(w);
+	r.alpha  = alpha;
+	r.inside = share;
+}
+
+WrapSolidResult& measured(WrapSolidResult& r, const TriMesh& input)
+{
+	std::tie(r.to_input, r.from_input) = wrap_distances(r.mesh, input, NearestOnSurface(input));
+	return r;
+}
+
+// What the winding number and the wrap see of a big input: the weld with vertices within `cell` merged,
+// so that about kWrapFaces faces are left (none merged, cell 0, when it has fewer). It lies within
+// `cell` of the input, far within the wrap's alpha; the wrap's distances are measured on the input.
+constexpr size_t kWrapFaces = 200000;
+TriMesh          coarse_copy(const TriMesh& welded, double offset, double& cell)
+{
+	cell = 0;
+	if (welded.F.size() <= kWrapFaces) return welded;
+	cell = std::max(offset, std::sqrt(2 * surface_area(welded) / kWrapFaces));
+	return weld(welded, cell);
+}
+
 } // namespace
 
-WrapSolidResult wrap_solid(const TriMesh& input, double alpha, double offset, double max_alpha, double min_inside)
+std::pair<double, double> wrap_distances(const TriMesh& wrap, const TriMesh& input, const NearestOnSurface& near)
 {
-	WrapSolidResult r;
+	std::vector<Vec3> finite;
+	for (const Vec3& v : input.V)
+		if (v.allFinite()) finite.push_back(v);
+	return {near.farthest(wrap.V), NearestOnSurface(wrap).farthest(finite)};
+}
+
+namespace {
+
+// The input as given, or welded at 1e-5 of its size, when that is a valid solid; otherwise `welded` is
+// the weld, for the measures that need shared vertices.
+bool as_given_or_welded(const TriMesh& input, WrapSolidResult& r, TriMesh& welded)
+{
+	welded = input;
 	try {
 		r.solid = make_solid(input);
 		r.mesh  = input;
-		return r;
+		return true;
 	} catch (const Error& e) {
 		if (e.kind != Error::InvalidInput) throw;
 		r.reason       = e.what();
 		r.reason_code  = e.code;
 		r.reason_count = e.count;
 	}
-	{
-		std::vector<Vec3> finite;
-		for (const Vec3& p : input.V)
-			if (p.allFinite()) finite.push_back(p);
-		const double size = finite.empty() ? 0 : extent(finite);
-		int          merged = 0;
-		if (size > 0) try {
-				TriMesh w = weld(input, 1e-5 * size, &merged);
-				if (merged > 0) {
-					Solid s = make_solid(w);
-					if (s.self_intersections == 0) {
-						r.mesh   = std::move(w);
-						r.welded = merged;
-						r.solid  = std::move(s);
-						return r;
-					}
+	std::vector<Vec3> finite;
+	for (const Vec3& p : input.V)
+		if (p.allFinite()) finite.push_back(p);
+	const double size   = finite.empty() ? 0 : extent(finite);
+	int          merged = 0;
+	if (size > 0) try {
+			TriMesh w = weld(input, 1e-5 * size, &merged);
+			welded    = w;
+			if (merged > 0) {
+				Solid s = make_solid(w);
+				if (s.self_intersections == 0) {
+					r.mesh   = std::move(w);
+					r.welded = merged;
+					r.solid  = std::move(s);
+					return true;
 				}
-			} catch (const Error& e) {
-				if (e.kind != Error::InvalidInput) throw;
 			}
+		} catch (const Error& e) {
+			if (e.kind != Error::InvalidInput) throw;
+		}
+	return false;
+}
+
+// The input wrapped together with the caps of its winding-number level set, if that holds the interior;
+// marks the input a skin when the caps span too much of the level set.
+bool capped_wrap(const TriMesh& input, const WindingNumber& wn, const NearestOnSurface& near,
+                 const std::vector<Vec3>& inside, double alpha, double offset, double min_inside,
+                 double max_cap_share, WrapSolidResult& r)
+{
+	const WindingCaps caps = winding_caps(input, wn, near, alpha / 2);
+	r.cap_share            = caps.cap_share;
+	if (caps.cap_share > max_cap_share) {
+		r.skin = true;
+		return false;
 	}
+	TriMesh with = input;
+	append(with, caps.mesh);
+	TriMesh      w     = alpha_wrap(with, alpha, offset);
+	const double share = share_inside(w, inside);
+	++r.tries;
+	if (share < min_inside) return false;
+	keep(r, std::move(w), alpha, share);
+	r.capped = true;
+	return true;
+}
+
+} // namespace
+
+WrapSolidResult wrap_solid(const TriMesh& input, double alpha, double offset, double max_alpha, double min_inside,
+                           double max_cap_share)
+{
+	WrapSolidResult r;
+	TriMesh         welded;
+	if (as_given_or_welded(input, r, welded)) return r;
 	// Too few interior samples (a point cloud, a sheet, faces that cancel) cannot tell a skin from a
-	// solid: the first wrap is kept. So is it when no wrap up to max_alpha holds the interior: the
-	// input is then an open shell (a cover, a fairing) rather than a solid with small holes, and its
-	// faithful skin is nearer to it than any coarse blob.
-	const std::vector<Vec3> inside = interior_samples(input, 512);
+	// solid: the first wrap is kept. Patches turned against their neighbours would turn the winding
+	// number inside out about them.
+	TriMesh coarse = coarse_copy(welded, offset, r.coarse_cell);
+	orient_patches(coarse);
+	const WindingNumber     wn(coarse);
+	const std::vector<Vec3> inside = interior_samples(coarse, wn, 512);
 	const bool              judge  = inside.size() >= 16;
 	r.wrapped = true;
+	if (judge && capped_wrap(coarse, wn, NearestOnSurface(coarse), inside, alpha, offset, min_inside, max_cap_share, r))
+		return measured(r, input);
+	// Should the caps not hold the interior either, coarser wraps are tried; when none up to max_alpha
+	// does, the input is an open shell (a cover, a fairing) rather than a solid with holes, and its
+	// faithful skin is nearer to it than any coarse blob.
+	const int capped_tries = r.tries;
 	for (double a = alpha;; a *= 2) {
-		TriMesh      w     = alpha_wrap(input, a, offset);
-		const double share = judge ? share_inside(w, inside) : 1.0;
+		TriMesh      w     = alpha_wrap(coarse, a, offset);
+		const double share = judge && !r.skin ? share_inside(w, inside) : 1.0;
 		++r.tries;
-		if (r.tries == 1 || share >= min_inside) r = WrapSolidResult{std::move(w), true, 0, a, share, r.tries, r.reason, r.reason_code, r.reason_count, std::nullopt};
-		if (share >= min_inside || a * 2 > max_alpha * (1 + 1e-9)) break;
+		if (r.tries == capped_tries + 1 || share >= min_inside) keep(r, std::move(w), a, share);
+		if (r.skin || share >= min_inside || a * 2 > max_alpha * (1 + 1e-9)) break;
 	}
-	return r;
+	r.skin = r.skin || !judge || r.inside < min_inside;
+	return measured(r, input);
 }
 
 } // namespace acd

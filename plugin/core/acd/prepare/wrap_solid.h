@@ -3,10 +3,12 @@
 #pragma once
 
 #include "acd/mesh/mesh.h"
+#include "acd/mesh/nearest.h"
 #include "acd/solid/solid.h"
 
 #include <optional>
 #include <string>
+#include <utility>
 
 namespace acd {
 
@@ -18,6 +20,12 @@ struct WrapSolidResult
 	double      alpha   = 0;        // the alpha of the wrap kept (model units)
 	double      inside  = 1;        // share of the input's interior samples inside the wrap kept
 	int         tries   = 0;        // wraps computed (the last one is not always the one kept)
+	bool        capped  = false;    // the openings were closed along the winding number's level set
+	bool        skin    = false;    // the input encloses no solid: the wrap is a thin skin about it
+	double      cap_share = 0;      // share of the level set's area that spans openings
+	double      coarse_cell = 0;    // a big input is wrapped with its vertices this close merged (0: none)
+	double      to_input   = 0;     // largest distance from the wrap's vertices to the input
+	double      from_input = 0;     // and from the input's vertices to the wrap (model units)
 	std::string reason;             // why the input was not used as given
 	int         reason_code  = 0;   // and that error's Error::Code and count
 	long        reason_count = 0;
@@ -29,11 +37,19 @@ struct WrapSolidResult
 std::vector<double> winding_numbers(const TriMesh& surface, const std::vector<Vec3>& points);
 
 // An open mesh wrapped with an alpha smaller than its holes is a thin skin hugging both sides of the
-// surface (the wrap slipped inside). Wraps with alpha, 2 alpha, ... up to max_alpha, and keeps the first
-// that holds at least `min_inside` of the points the input's winding number places inside; when none
-// does, the input is an open shell and the first wrap, its skin, is kept. The input is returned as
-// given when make_solid accepts it, and welded (1e-5 of its size) when that is all it takes.
+// surface (the wrap slipped inside). Where the input's winding number says it encloses a solid, the
+// level set |w| = 1/2 (winding_caps, on a grid of alpha / 2) is wrapped with it: its caps close the
+// openings along the surface's continuation, whatever their size. When the caps span more than
+// `max_cap_share` of that surface the input is an open shell (a bowl, a tube, a sheet) and the first
+// wrap, its skin, is kept. Should the capped wrap still not hold `min_inside` of the points the
+// winding number places inside, wraps with 2 alpha, 4 alpha, ... up to max_alpha are tried. The input
+// is returned as given when make_solid accepts it, and welded (1e-5 of its size) when that is all it
+// takes.
 WrapSolidResult wrap_solid(const TriMesh& input, double alpha, double offset, double max_alpha,
-                           double min_inside = 0.5);
+                           double min_inside = 0.5, double max_cap_share = 0.25);
+
+// How far a wrap lies from its input, both ways, measured at vertices: the largest distance from the
+// wrap's vertices to the input (near: the input's tree) and from the input's finite vertices to the wrap.
+std::pair<double, double> wrap_distances(const TriMesh& wrap, const TriMesh& input, const NearestOnSurface& near);
 
 } // namespace acd
