@@ -201,7 +201,7 @@ void FilterACD::log_prepared(const acd::PreparedSolid& p)
 		log("Alpha wrap: %zu faces in, %zu out; the wrap lies about %g outside the input (alpha %g); measured at "
 		    "vertices, it reaches %g from the input and the input %g from it%s", p.faces_in, s.mesh.F.size(), p.offset,
 		    p.alpha, p.to_input, p.from_input,
-		    p.capped ? ". Its openings were closed along the surface the input's winding number continues them by."
+		    p.capped ? ". Its openings were capped where the input's winding number is 1/2."
 		    : p.skin ? ". The input encloses no solid: the wrap is a thin skin about it." : "");
 	if (s.self_intersections > 0) log("Warning: %s", qUtf8Printable(self_intersection_message(s.self_intersections)));
 	if (s.reoriented_shells > 0)

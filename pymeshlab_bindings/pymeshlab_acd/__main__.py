@@ -77,7 +77,11 @@ def cmd_decompose(a):
     if res.get("self_intersections"):
         print(f"note             the mesh intersects itself ({res['self_intersections']} face pairs cross)")
     if res.get("wrap_alpha_used"):
-        print(f"preprocessing    alpha-wrapped at {res['wrap_alpha_used']:.3g}% (the input is not a closed solid)")
+        how = (", openings capped along the surface" if res.get("wrap_capped")
+               else ", a skin: the input encloses no solid" if res.get("wrap_skin") else "")
+        print(f"preprocessing    alpha-wrapped at {res['wrap_alpha_used']:.3g}%{how} (the input is not a closed solid); "
+              f"the solid reaches {res['solid_to_input']:.4g} from the input, the input {res['input_to_solid']:.4g} "
+              f"from it")
     elif res.get("welded_vertices"):
         print(f"preprocessing    {res['welded_vertices']} duplicate vertices welded")
     if not res.get("tau_convex", True):

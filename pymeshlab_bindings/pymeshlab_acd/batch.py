@@ -86,8 +86,9 @@ def decompose_file(src, out_dir, opts):
     parts = [i for i in ids if i not in hulls]
     vol = mass_properties(*merged_layers(ms, parts))[0]      # the solid decomposed (the wrap, if wrapped)
     hull_vol = sum(mass_properties(ms.mesh(i).vertex_matrix(), ms.mesh(i).face_matrix())[0] for i in hulls)
-    pre = ("none", f"welded {res['welded_vertices']} vertices", f"alpha_wrap {res['wrap_alpha_used']:.3g}%")[
-        res["preprocessing_done"]]
+    wrap = f"alpha_wrap {res['wrap_alpha_used']:.3g}%" + (
+        ", openings capped" if res.get("wrap_capped") else ", a skin" if res.get("wrap_skin") else "")
+    pre = ("none", f"welded {res['welded_vertices']} vertices", wrap)[res["preprocessing_done"]]
     note = ("wrapped: as given, it intersects itself and its parts fell short of tau or a cut opened a part"
             if res["self_crossing_wrapped"] else _not_as_given(res))
     if opts["save_tree"]:   # for coarser levels later

@@ -1,0 +1,75 @@
+"""preprocessing=auto on open meshes: holes of any size close along the surface (the input's winding
+number), not by a blob and not as a hollow skin; a sheet stays a skin.
+
+Open meshes are made here from closed solids (a shared scan and two CAD solids with 1, 3 and 10 holes of
+growing size, a triangle soup, a patch turned against its neighbours). Re-measured against the *closed*
+solid, sharing no code with the core (libigl's winding number and distances, scipy's Qhull): the hulls
+hold the solid (it was not wrapped as a skin), and reach outside it no farther than tau plus the
+solid-to-input distance the result reports."""
+import numpy as np
+import pymeshlab
+import pytest
+
+import pymeshlab_acd
+from support import cad_solids
+from support.meshes import SHARED
+from support.open_meshes import (covered, diagonal, flipped_patch, punched, reach_beyond, refined, sheet, soup,
+                                 surface_samples)
+
+
+def closed(name):
+    if name == "spot":
+        ms = pymeshlab.MeshSet()
+        ms.load_new_mesh(str(SHARED / "spot.obj"))
+        return ms.current_mesh().vertex_matrix(), ms.current_mesh().face_matrix()
+    return refined(*cad_solids.make(name))
+
+
+def decompose(V, F):
+    hulls, parts, res = pymeshlab_acd.convex_decomposition(V, F, return_parts=True)
+    return hulls, res
+
+
+def check_solid_within(hulls, res, V, F):
+    """The hulls hold the closed solid and reach beyond it by at most tau plus the reported distance."""
+    rng = np.random.default_rng(0)
+    assert res["alpha_wrapped"] and res["wrap_capped"] and not res["wrap_skin"]
+    assert covered(hulls, V, F, rng) > 0.97
+    reach = reach_beyond(hulls, V, F, rng)
+    assert reach <= res["tau_model_units"] + res["solid_to_input"] + 0.002 * diagonal(V), (reach, res)
+    # no blob either: the caps lie about where the surface was, so the hulls stay near tau of the solid
+    assert reach <= 1.3 * res["tau_model_units"] + 0.002 * diagonal(V), (reach, res)
+    return reach
+
+
+@pytest.mark.parametrize("holes", [1, 3, 10])
+@pytest.mark.parametrize("name", ["spot", "bracket", "spur_gear"])
+def test_holes_of_growing_size_close_along_the_surface(name, holes):
+    V, F = closed(name)
+    OV, OF = punched(V, F, holes)
+    assert len(OF) < len(F)
+    hulls, res = decompose(OV, OF)
+    check_solid_within(hulls, res, V, F)
+    # the caps lie across the holes, no farther from the input than the largest hole's radius
+    assert res["solid_to_input"] <= (0.08 if holes > 1 else 0.02) * diagonal(V) + res["tau_model_units"]
+    assert res["preprocessing_time"] > 0
+
+
+@pytest.mark.parametrize("dirt", ["soup", "flipped_patch"])
+def test_a_soup_and_a_flipped_patch_still_enclose_their_solid(dirt):
+    V, F = closed("spot")
+    OV, OF = punched(V, F, 3)
+    OV, OF = soup(OV, OF) if dirt == "soup" else flipped_patch(OV, OF)
+    hulls, res = decompose(OV, OF)
+    check_solid_within(hulls, res, V, F)
+
+
+def test_a_sheet_stays_a_skin():
+    import igl
+    V, F = sheet()
+    hulls, res = decompose(V, F)
+    assert res["alpha_wrapped"] and res["wrap_skin"] and not res["wrap_capped"]
+    P = surface_samples(hulls, 20000, np.random.default_rng(0))
+    sq, _, _ = igl.point_mesh_squared_distance(P, np.ascontiguousarray(V, float), np.ascontiguousarray(F, np.int64))
+    assert np.sqrt(sq.max()) <= res["tau_model_units"] + res["solid_to_input"] + 1e-3 * diagonal(V)
+    assert res["solid_to_input"] < 0.01 * diagonal(V)   # a skin hugs the sheet
