@@ -2,7 +2,8 @@
 # Benchmark against CoACD, V-HACD 4 and CGAL's ACD (see bench/bench.py --help); with --robots, the
 # robot corpus with the certificate and the peers on a sample (bench/bench_robots.py); with --rotation,
 # the pose-dependence table instead (bench/bench_rotation.py); with --scale, time against face count on a
-# scan and a CAD series (bench/bench_scale.py); with --polygons, the 2D table against
+# scan and a CAD series (bench/bench_scale.py); with --open, open meshes against closed ones
+# (bench/bench_open.py); with --polygons, the 2D table against
 # CGAL's Partition_2 (bench/bench_polygons.py). Installs what it needs on top of
 # scripts/setup.sh: the peers from PyPI and the C++ metric/peer tools.
 set -euo pipefail
@@ -23,6 +24,10 @@ fi
 if [ "${1:-}" = "--scale" ]; then   # time against face count: a scan series and a CAD series
 	shift
 	exec python3 "$here/bench_scale.py" "$@"
+fi
+if [ "${1:-}" = "--open" ]; then   # open meshes against closed ones, per set, and a 1M-face open scan
+	shift
+	exec python3 "$here/bench_open.py" "$@"
 fi
 if [ "${1:-}" = "--rotation" ]; then
 	shift
