@@ -86,7 +86,7 @@ TEST_CASE("a sphere with holes is wrapped solid along its own surface, not as a 
 	CHECK(r.wrapped);
 	CHECK(r.capped);
 	CHECK(!r.skin);
-	CHECK(r.tries == 1);
+	CHECK(r.tries == 2);   // the plain wrap, then the capped one
 	CHECK(r.alpha == 0.05);
 	CHECK(r.inside >= 0.95);
 	CHECK(!r.reason.empty());
@@ -107,11 +107,11 @@ TEST_CASE("one, three and ten holes of growing size close along the sphere")
 	const std::vector<Vec3> dirs = {Vec3(0, 0, 1), Vec3(1, 0, 0), Vec3(0, -1, 0), Vec3(-1, 1, 0), Vec3(0, 1, -1),
 	                                Vec3(1, 1, 1), Vec3(-1, -1, -1), Vec3(1, -1, 0.3), Vec3(-1, 0.2, -1), Vec3(0.3, 1, 1)};
 	for (int holes : {1, 3, 10}) {
-		// Hole k of n has radius 0.1 + 0.4 k / n (at most 0.5: a sixth of the sphere's height).
+		// Hole k of n has radius 0.1 + 0.25 k / n: every cap within max_alpha (0.4) of the rim.
 		TriMesh open = s;
 		double  sag  = 0;   // of the largest hole's rim
 		for (int k = 0; k < holes; ++k) {
-			const double radius = 0.1 + 0.4 * k / holes;
+			const double radius = 0.1 + 0.25 * k / holes;
 			open = punched(open, {dirs[k]}, radius);
 			sag  = std::max(sag, 1 - std::sqrt(1 - radius * radius));
 		}
@@ -177,6 +177,19 @@ TEST_CASE("an open shell no wrap fills keeps its skin")
 	CHECK(r.cap_share > 0.25);
 	CHECK(r.alpha == 0.05);
 	CHECK(signed_volume(r.mesh) < 0.1 * (2.0 / 3.0 * M_PI));
+}
+
+TEST_CASE("an opening wider than the coarsest wrap would close keeps the skin")
+{
+	// A sphere with a hole 1.6 across: a helmet rather than a ball with a hole. Its cap would lie about
+	// 0.8 from the rim, beyond max_alpha (0.4), though it spans less than a quarter of the level set.
+	const WrapSolidResult r = wrap_solid(punched(shapes::sphere(4, 1.0), {Vec3(0, 0, 1)}, 0.8), 0.05, 0.005, 0.4);
+	CHECK(r.wrapped);
+	CHECK(r.skin);
+	CHECK(!r.capped);
+	CHECK(r.cap_share < 0.25);
+	CHECK(r.alpha == 0.05);
+	CHECK(r.to_input < 0.02);
 }
 
 TEST_CASE("a triangle soup of a closed box is welded not wrapped")

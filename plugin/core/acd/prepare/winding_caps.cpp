@@ -168,12 +168,15 @@ WindingCaps winding_caps(const TriMesh& input, const WindingNumber& wn, const Ne
 	TriMesh m = level_set(g, sparse_values(g, input, wn));
 
 	// Near the input the level set is the input itself, blurred by the grid: move it back onto it.
-	const double      snap = std::sqrt(3.0) * g.h;
-	std::vector<char> moved(m.V.size(), 0);
+	const double        snap = std::sqrt(3.0) * g.h;
+	std::vector<char>   moved(m.V.size(), 0);
+	std::vector<double> off(m.V.size(), 0);
 	parallel_for_chunked(m.V.size(), 1024, [&](size_t i) {
 		const Vec3 c = near.closest(m.V[i]);
-		if ((c - m.V[i]).norm() <= snap) m.V[i] = c, moved[i] = 1;
+		off[i]       = (c - m.V[i]).norm();
+		if (off[i] <= snap) m.V[i] = c, moved[i] = 1, off[i] = 0;
 	});
+	caps.reach = m.V.empty() ? 0 : *std::max_element(off.begin(), off.end());
 	// Faces moved onto the input entirely add nothing to it: the caps are the rest.
 	double away = 0, all = 0;
 	for (const Tri& t : m.F) {

@@ -16,6 +16,7 @@ struct WindingCaps
 	TriMesh mesh;            // the caps, a triangle soup (the wrap needs no orientation)
 	double  spacing   = 0;   // the grid's, model units
 	double  cap_share = 0;   // share of its area away from the input: the openings it spans
+	double  reach     = 0;   // the largest distance from a vertex of the caps to the input
 };
 
 // The grid holds at most `max_points` points (its spacing grows beyond `spacing` to fit).

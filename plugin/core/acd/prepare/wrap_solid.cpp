@@ -128,15 +128,16 @@ bool as_given_or_welded(const TriMesh& input, WrapSolidResult& r, TriMesh& welde
 	return false;
 }
 
-// The input wrapped together with the caps of its winding-number level set, if that holds the interior;
-// marks the input a skin when the caps span too much of the level set.
+// The input wrapped together with the caps of its winding-number level set, kept if it holds the
+// interior; marks the input a skin (keeping what r holds) when the caps span too much of the level set
+// or reach farther from the input than max_reach (openings wider than the coarsest wrap would close).
 bool capped_wrap(const TriMesh& input, const WindingNumber& wn, const NearestOnSurface& near,
                  const std::vector<Vec3>& inside, double alpha, double offset, double min_inside,
-                 double max_cap_share, WrapSolidResult& r)
+                 double max_cap_share, double max_reach, WrapSolidResult& r)
 {
 	const WindingCaps caps = winding_caps(input, wn, near, alpha / 2);
 	r.cap_share            = caps.cap_share;
-	if (caps.cap_share > max_cap_share) {
+	if (caps.cap_share > max_cap_share || caps.reach > max_reach) {
 		r.skin = true;
 		return false;
 	}
@@ -168,18 +169,22 @@ WrapSolidResult wrap_solid(const TriMesh& input, double alpha, double offset, do
 	const std::vector<Vec3> inside = interior_samples(coarse, wn, 512);
 	const bool              judge  = inside.size() >= 16;
 	r.wrapped = true;
-	if (judge && capped_wrap(coarse, wn, NearestOnSurface(coarse), inside, alpha, offset, min_inside, max_cap_share, r))
+	// The plain wrap first: where it holds the interior (the openings are narrower than alpha, or there
+	// is no interior to judge by) it is the solid nearest the input.
+	keep(r, alpha_wrap(coarse, alpha, offset), alpha, 1.0);
+	++r.tries;
+	if (judge) r.inside = share_inside(r.mesh, inside);
+	if (judge && r.inside < min_inside &&
+	    capped_wrap(coarse, wn, NearestOnSurface(coarse), inside, alpha, offset, min_inside, max_cap_share, max_alpha, r))
 		return measured(r, input);
 	// Should the caps not hold the interior either, coarser wraps are tried; when none up to max_alpha
 	// does, the input is an open shell (a cover, a fairing) rather than a solid with holes, and its
 	// faithful skin is nearer to it than any coarse blob.
-	const int capped_tries = r.tries;
-	for (double a = alpha;; a *= 2) {
+	for (double a = 2 * alpha; judge && !r.skin && r.inside < min_inside && a <= max_alpha * (1 + 1e-9); a *= 2) {
 		TriMesh      w     = alpha_wrap(coarse, a, offset);
-		const double share = judge && !r.skin ? share_inside(w, inside) : 1.0;
+		const double share = share_inside(w, inside);
 		++r.tries;
-		if (r.tries == capped_tries + 1 || share >= min_inside) keep(r, std::move(w), a, share);
-		if (r.skin || share >= min_inside || a * 2 > max_alpha * (1 + 1e-9)) break;
+		if (share >= min_inside) keep(r, std::move(w), a, share);
 	}
 	r.skin = r.skin || !judge || r.inside < min_inside;
 	return measured(r, input);
