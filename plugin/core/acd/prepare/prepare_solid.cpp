@@ -20,10 +20,10 @@ const std::vector<PreprocessingMode>& preprocessing_modes()
 		 "about wrap_offset outside the input)"},
 		{Preprocessing::Auto, "auto",
 		 "as given when it is a valid solid, else welded (vertices within 1e-5 of its size) if that makes it one, "
-		 "else alpha wrapped together with caps across its openings where its generalized winding number is 1/2, "
-		 "so that holes of any size close along the surface instead of the wrap slipping inside as a hollow "
-		 "skin; an open shell (a sheet, a bowl, a tube) keeps the plain wrap, its skin. A solid that crosses "
-		 "itself is decomposed as given within 120 s and wrapped when its parts fall short of tau"},
+		 "else alpha wrapped; a wrap that slipped inside through wider holes (a hollow skin) is made again with "
+		 "caps across the openings where the input's generalized winding number is 1/2, so that they close along "
+		 "the surface; an open shell (a sheet, a bowl, a helmet) keeps its skin. A solid that crosses itself is "
+		 "decomposed as given within 120 s and wrapped when its parts fall short of tau"},
 	};
 	return table;
 }

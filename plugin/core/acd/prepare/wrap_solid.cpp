@@ -11,6 +11,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <random>
 #include <tuple>
 #include <unordered_map>
@@ -128,19 +129,10 @@ bool as_given_or_welded(const TriMesh& input, WrapSolidResult& r, TriMesh& welde
 	return false;
 }
 
-// The input wrapped together with the caps of its winding-number level set, kept if it holds the
-// interior; marks the input a skin (keeping what r holds) when the caps span too much of the level set
-// or reach farther from the input than max_reach (openings wider than the coarsest wrap would close).
-bool capped_wrap(const TriMesh& input, const WindingNumber& wn, const NearestOnSurface& near,
-                 const std::vector<Vec3>& inside, double alpha, double offset, double min_inside,
-                 double max_cap_share, double max_reach, WrapSolidResult& r)
+// The input wrapped together with its caps, kept if it holds the interior.
+bool capped_wrap(const TriMesh& input, const WindingCaps& caps, const std::vector<Vec3>& inside, double alpha,
+                 double offset, double min_inside, WrapSolidResult& r)
 {
-	const WindingCaps caps = winding_caps(input, wn, near, alpha / 2);
-	r.cap_share            = caps.cap_share;
-	if (caps.cap_share > max_cap_share || caps.reach > max_reach) {
-		r.skin = true;
-		return false;
-	}
 	TriMesh with = input;
 	append(with, caps.mesh);
 	TriMesh      w     = alpha_wrap(with, alpha, offset);
@@ -169,24 +161,30 @@ WrapSolidResult wrap_solid(const TriMesh& input, double alpha, double offset, do
 	const std::vector<Vec3> inside = interior_samples(coarse, wn, 512);
 	const bool              judge  = inside.size() >= 16;
 	r.wrapped = true;
-	// The plain wrap first: where it holds the interior (the openings are narrower than alpha, or there
-	// is no interior to judge by) it is the solid nearest the input.
+	// The caps tell the openings: none wider than alpha, and the plain wrap closes them; wider ones, and
+	// it would slip inside, unless they span so much (over max_cap_share of the level set, or farther
+	// than max_alpha from the input) that the input is an open shell (a bowl, a tube, a helmet).
+	std::optional<WindingCaps> caps;
+	if (judge) caps = winding_caps(coarse, wn, NearestOnSurface(coarse), alpha / 2);
+	const double reach = caps ? caps->reach : 0;
+	r.cap_share        = caps ? caps->cap_share : 0;
+	const bool shell   = caps && (r.cap_share > max_cap_share || reach > max_alpha);
+	const bool wide    = caps && !shell && reach > alpha;
+	if (wide && capped_wrap(coarse, *caps, inside, alpha, offset, min_inside, r)) return measured(r, input);
 	keep(r, alpha_wrap(coarse, alpha, offset), alpha, 1.0);
 	++r.tries;
 	if (judge) r.inside = share_inside(r.mesh, inside);
-	if (judge && r.inside < min_inside &&
-	    capped_wrap(coarse, wn, NearestOnSurface(coarse), inside, alpha, offset, min_inside, max_cap_share, max_alpha, r))
+	if (judge && !shell && !wide && r.inside < min_inside && capped_wrap(coarse, *caps, inside, alpha, offset, min_inside, r))
 		return measured(r, input);
 	// Should the caps not hold the interior either, coarser wraps are tried; when none up to max_alpha
-	// does, the input is an open shell (a cover, a fairing) rather than a solid with holes, and its
-	// faithful skin is nearer to it than any coarse blob.
-	for (double a = 2 * alpha; judge && !r.skin && r.inside < min_inside && a <= max_alpha * (1 + 1e-9); a *= 2) {
+	// does, the first wrap, the input's skin, is nearer to it than any coarse blob.
+	for (double a = 2 * alpha; judge && !shell && r.inside < min_inside && a <= max_alpha * (1 + 1e-9); a *= 2) {
 		TriMesh      w     = alpha_wrap(coarse, a, offset);
 		const double share = share_inside(w, inside);
 		++r.tries;
 		if (share >= min_inside) keep(r, std::move(w), a, share);
 	}
-	r.skin = r.skin || !judge || r.inside < min_inside;
+	r.skin = !judge || r.inside < min_inside;
 	return measured(r, input);
 }
 

@@ -37,16 +37,17 @@ struct WrapSolidResult
 std::vector<double> winding_numbers(const TriMesh& surface, const std::vector<Vec3>& points);
 
 // An open mesh wrapped with an alpha smaller than its holes is a thin skin hugging both sides of the
-// surface (the wrap slipped inside). The wrap at alpha is kept when it holds at least `min_inside` of the
-// points the input's winding number places inside (or when too few points are inside to judge: a sheet,
-// a point cloud). Otherwise the input is wrapped again together with the caps of its winding number's
-// level set |w| = 1/2 (winding_caps, on a grid of alpha / 2), which close the openings along the
-// surface's continuation. When the caps span more than `max_cap_share` of that surface, or reach
-// farther than max_alpha from the input (openings wider than the coarsest wrap would close), the input
-// is an open shell (a bowl, a tube, a helmet) and the first wrap, its skin, is kept; should the
-// capped wrap not hold the interior either, wraps with 2 alpha, 4 alpha, ... up to max_alpha are tried.
-// The input is returned as given when make_solid accepts it, and welded (1e-5 of its size) when that is
-// all it takes.
+// surface (the wrap slipped inside). The caps of the input's winding-number level set |w| = 1/2
+// (winding_caps, on a grid of alpha / 2) tell its openings. Where a cap lies farther than alpha from the
+// input, the input is wrapped together with the caps, which close the openings along the surface's
+// continuation; otherwise the plain wrap at alpha is made, and the caps are added only if it holds less
+// than `min_inside` of the points the winding number places inside. When the caps span more than
+// `max_cap_share` of the level set, or reach farther than max_alpha from the input (openings wider than
+// the coarsest wrap would close), the input is an open shell (a bowl, a tube, a helmet) and the plain
+// wrap, its skin, is kept; so it is when too few points are inside to judge (a sheet, a point cloud).
+// Should a capped wrap not hold the interior, wraps with 2 alpha, 4 alpha, ... up to max_alpha are
+// tried. The input is returned as given when make_solid accepts it, and welded (1e-5 of its size) when
+// that is all it takes.
 WrapSolidResult wrap_solid(const TriMesh& input, double alpha, double offset, double max_alpha,
                            double min_inside = 0.5, double max_cap_share = 0.25);
 
