@@ -43,9 +43,8 @@ CAD = ("bracket", "flange", "spur_gear", "belt_pulley", "bossed_plate", "t_slot_
 
 
 def write_obj(path, V, F):
-    with open(path, "w") as f:
-        f.writelines("v %.17g %.17g %.17g\n" % tuple(v) for v in V)
-        f.writelines("f %d %d %d\n" % tuple(t + 1) for t in F)
+    from pymeshlab_acd.export import write_obj_objects
+    write_obj_objects(path, [(V, F)], "mesh")
 
 
 def load(path):

@@ -50,6 +50,22 @@ double bbox_diagonal(const std::vector<Vec3>& pts)
 	return (hi - lo).norm();
 }
 
+std::vector<Vec3> finite_vertices(const TriMesh& m)
+{
+	std::vector<Vec3> finite;
+	for (const Vec3& v : m.V)
+		if (v.allFinite()) finite.push_back(v);
+	return finite;
+}
+
+Eigen::AlignedBox3d finite_box(const TriMesh& m)
+{
+	Eigen::AlignedBox3d box;
+	for (const Vec3& v : m.V)
+		if (v.allFinite()) box.extend(v);
+	return box;
+}
+
 double extent(const std::vector<Vec3>& pts)
 {
 	if (pts.empty()) return 0;

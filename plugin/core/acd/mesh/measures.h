@@ -13,6 +13,9 @@ double surface_area(const TriMesh& m);
 // Adds `from`'s vertices and faces to `to` (disjoint union).
 void append(TriMesh& to, const TriMesh& from);
 double bbox_diagonal(const std::vector<Vec3>& pts);
+// The vertices with finite coordinates, and their bounding box (empty when there are none).
+std::vector<Vec3>   finite_vertices(const TriMesh& m);
+Eigen::AlignedBox3d finite_box(const TriMesh& m);
 // A size that does not change with pose: twice the largest distance from the vertices' centroid
 // (an axis-aligned box diagonal grows by up to sqrt(3) under rotation).
 double extent(const std::vector<Vec3>& pts);

@@ -65,6 +65,15 @@ struct Plane
 	}
 };
 
+// Does face t name three vertices of m that exist and have finite coordinates? Measures skip the faces
+// that do not; make_solid names them.
+inline bool finite_face(const TriMesh& m, const Tri& t)
+{
+	for (int v : t)
+		if (v < 0 || v >= (int) m.V.size() || !m.V[v].allFinite()) return false;
+	return true;
+}
+
 // The plane through p with normal n (normalized here).
 inline Plane through(const Vec3& p, Vec3 n)
 {

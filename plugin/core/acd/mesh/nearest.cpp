@@ -25,11 +25,8 @@ struct NearestOnSurface::Tree
 
 NearestOnSurface::NearestOnSurface(const TriMesh& s) : tree(std::make_unique<Tree>())
 {
-	for (const Tri& t : s.F) {
-		bool ok = true;
-		for (int v : t) ok = ok && v >= 0 && v < (int) s.V.size() && s.V[v].allFinite();
-		if (ok) tree->tris.emplace_back(point(s.V[t[0]]), point(s.V[t[1]]), point(s.V[t[2]]));
-	}
+	for (const Tri& t : s.F)
+		if (finite_face(s, t)) tree->tris.emplace_back(point(s.V[t[0]]), point(s.V[t[1]]), point(s.V[t[2]]));
 	tree->aabb.insert(tree->tris.begin(), tree->tris.end());
 	tree->aabb.build();
 	if (tree->tris.empty()) return;

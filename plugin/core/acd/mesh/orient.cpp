@@ -8,11 +8,7 @@ namespace acd {
 int orient_patches(TriMesh& m)
 {
 	// Each undirected edge with its faces and whether each runs it from the lower vertex to the higher.
-	const auto valid = [&](int f) {
-		for (int v : m.F[f])
-			if (v < 0 || v >= (int) m.V.size() || !m.V[v].allFinite()) return false;
-		return true;
-	};
+	const auto valid = [&](int f) { return finite_face(m, m.F[f]); };
 	std::vector<std::array<int, 4>> uses;   // lo, hi, face, forward
 	for (int f = 0; f < (int) m.F.size(); ++f)
 		for (int k = 0; k < 3 && valid(f); ++k) {

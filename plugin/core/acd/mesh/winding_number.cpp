@@ -25,11 +25,8 @@ double solid_angle(const std::array<Vec3, 3>& t, const Vec3& q)
 
 WindingNumber::WindingNumber(const TriMesh& s)
 {
-	for (const Tri& t : s.F) {
-		bool ok = true;
-		for (int v : t) ok = ok && v >= 0 && v < (int) s.V.size() && s.V[v].allFinite();
-		if (ok) tri.push_back({s.V[t[0]], s.V[t[1]], s.V[t[2]]});
-	}
+	for (const Tri& t : s.F)
+		if (finite_face(s, t)) tri.push_back({s.V[t[0]], s.V[t[1]], s.V[t[2]]});
 	nodes.reserve(2 * tri.size() / kLeaf + 2);
 	if (!tri.empty()) build(0, (int) tri.size());
 }

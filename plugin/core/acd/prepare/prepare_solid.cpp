@@ -32,9 +32,7 @@ namespace {
 
 double finite_size(const TriMesh& mesh)
 {
-	std::vector<Vec3> finite;
-	for (const Vec3& p : mesh.V)
-		if (p.allFinite()) finite.push_back(p);
+	const std::vector<Vec3> finite = finite_vertices(mesh);
 	if (finite.empty()) throw Error(Error::InvalidInput, "The mesh has no vertex with finite coordinates.");
 	return enclosing_diameter(finite);
 }

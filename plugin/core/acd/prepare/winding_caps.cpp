@@ -1,4 +1,5 @@
 #include "acd/prepare/winding_caps.h"
+#include "acd/mesh/measures.h"
 #include "acd/mesh/parallel.h"
 
 #include <algorithm>
@@ -25,10 +26,8 @@ struct Grid
 
 Grid make_grid(const TriMesh& in, double spacing, size_t max_points)
 {
-	Eigen::AlignedBox3d box;
-	for (const Vec3& v : in.V)
-		if (v.allFinite()) box.extend(v);
-	Grid g;
+	const Eigen::AlignedBox3d box = finite_box(in);
+	Grid                      g;
 	g.h = spacing;
 	for (;;) {
 		g.lo = box.min() - Vec3::Constant(2 * g.h);

@@ -29,10 +29,8 @@ namespace {
 // orientation is not trusted), drawn from a fixed seed so that the choice is repeatable.
 std::vector<Vec3> interior_samples(const TriMesh& in, const WindingNumber& wn, int count)
 {
-	Eigen::AlignedBox3d box;
-	for (const Vec3& v : in.V)
-		if (v.allFinite()) box.extend(v);
-	std::vector<Vec3> pts;
+	const Eigen::AlignedBox3d box = finite_box(in);
+	std::vector<Vec3>         pts;
 	if (box.isEmpty()) return pts;
 	const Vec3                             lo = box.min(), hi = box.max();
 	std::mt19937                           rng(12345);
@@ -83,10 +81,7 @@ TriMesh          coarse_copy(const TriMesh& welded, double offset, double& cell)
 
 std::pair<double, double> wrap_distances(const TriMesh& wrap, const TriMesh& input, const NearestOnSurface& near)
 {
-	std::vector<Vec3> finite;
-	for (const Vec3& v : input.V)
-		if (v.allFinite()) finite.push_back(v);
-	return {near.farthest(wrap.V), NearestOnSurface(wrap).farthest(finite)};
+	return {near.farthest(wrap.V), NearestOnSurface(wrap).farthest(finite_vertices(input))};
 }
 
 namespace {
@@ -106,10 +101,7 @@ bool as_given_or_welded(const TriMesh& input, WrapSolidResult& r, TriMesh& welde
 		r.reason_code  = e.code;
 		r.reason_count = e.count;
 	}
-	std::vector<Vec3> finite;
-	for (const Vec3& p : input.V)
-		if (p.allFinite()) finite.push_back(p);
-	const double size   = finite.empty() ? 0 : extent(finite);
+	const double size   = extent(finite_vertices(input));
 	int          merged = 0;
 	if (size > 0) try {
 			TriMesh w = weld(input, 1e-5 * size, &merged);
