@@ -92,10 +92,9 @@ def test_cli_checks_arguments_before_any_work(tmp_path):
 def _filter_defaults(ms):
     """The MeshLab filter's own parameter defaults (the GUI dialog's, a bare pymeshlab call's), with each
     choice's menu index turned into its label."""
-    from pymeshlab_acd.options import choices
+    from pymeshlab_acd.options import DEFAULTS, choices
     got = ms.filter_parameter_values("generate_approximate_convex_decomposition")
-    return {k: (choices(k)[v] if k in ("tau_unit", "cut_plane_selection", "hole_handling", "hole_order",
-                                        "preprocessing", "on_self_intersection") else v) for k, v in got.items()}
+    return {k: (choices(k)[v] if isinstance(DEFAULTS.get(k), str) else v) for k, v in got.items()}
 
 
 def _cli_defaults():

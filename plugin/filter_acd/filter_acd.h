@@ -10,6 +10,7 @@
 #include <acd/decompose3/decompose.h>
 #include <acd/prepare/prepare_solid.h>
 #include <acd/solid/solid.h>
+#include <acd/structure/collision_hulls.h>
 
 class FilterACD : public QObject, public FilterPlugin
 {
@@ -53,6 +54,7 @@ private:
 	};
 	Run  runDecomposition(const RichParameterList& par, MeshModel& input, vcg::CallBackPos* cb);
 	void log_prepared(const acd::PreparedSolid& p);
+	void log_budget(const acd::CollisionHulls& hulls, double hull_distance);
 	std::map<std::string, QVariant> notchConcavity(MeshModel& m, vcg::CallBackPos* cb);
 	std::map<std::string, QVariant>
 	decompose(const RichParameterList& par, MeshDocument& md, vcg::CallBackPos* cb);

@@ -14,6 +14,8 @@
 #include <acd/polygon/polygon.h>
 #include <acd/structure/skeleton.h>
 #include <acd/io/tree_io.h>
+#include <acd/structure/collision_hulls.h>
+#include <acd/api/options.h>
 #include <acd/decompose3/decompose_mesh.h>
 #include <acd/mesh/measures.h>
 #include <acd/solid/solid.h>
@@ -163,6 +165,22 @@ std::map<std::string, QVariant> FilterACD::notchConcavity(MeshModel& mm, vcg::Ca
 	};
 }
 
+// What cutting the hulls down to a budget cost, and the bound they then hold.
+void FilterACD::log_budget(const acd::CollisionHulls& ch, double hull_distance)
+{
+	const acd::HullBudget& b = ch.budget;
+	log("%d of %zu hulls cut down to %s's budget (vertices %d, polygons %d, triangles %d; 0 = no limit) by keeping "
+	    "as many of their facet planes as fit: each still contains its part and reaches at most %g beyond its exact "
+	    "hull, so the hulls lie within %g of their parts",
+	    ch.reduced, ch.hulls.size(), acd::engine(ch.engine).label, b.vertices, b.polygons, b.triangles, ch.max_reach,
+	    hull_distance + ch.max_reach);
+	if (ch.over_budget > 0) log("Warning: %d hulls are still over the budget", ch.over_budget);
+	if (ch.thin_count > 0)
+		log("Warning: %d hulls are thinner than 1/100 of their extent: %s runs them on the CPU", ch.thin_count,
+		    acd::engine(ch.engine).label);
+}
+
+
 FilterACD::Run FilterACD::runDecomposition(const RichParameterList& par, MeshModel& input, vcg::CallBackPos* cb)
 {
 	acd::TriMesh raw   = acdml::to_trimesh(input.cm);
@@ -224,21 +242,18 @@ FilterACD::decompose(const RichParameterList& par, MeshDocument& md, vcg::CallBa
 	const double        size  = run.size;
 	acd::Decomposition& d     = run.d;
 
-	const bool hulls     = par.getBool("output_hulls");
-	const int  max_hullv = par.getInt("max_hull_vertices");
-	int        idx       = 0;
+	const auto engine = acd::Engine(acd::option("engine").choices[par.getEnum("engine")].value);
+	const bool hulls  = par.getBool("output_hulls") || engine != acd::Engine::None;
+	const acd::CollisionHulls ch = hulls ? acd::collision_hulls(d, engine, par.getInt("max_hull_vertices")) : acd::CollisionHulls{};
+	int idx = 0;
 	for (int li : d.parts()) {
 		const acd::Node& n = d.nodes[li];
 		add_layer(md, layer_name("acd_", n.path), n.mesh, &input, idx);
-		if (hulls) {
-			acd::ConvexHull h(n.mesh.V);
-			acd::TriMesh    hm = h.canonical_mesh();
-			if (max_hullv > 3 && (int) hm.V.size() > max_hullv) hm = acd::simplify_hull(hm, max_hullv);
-			add_layer(md, layer_name("acd_hull_", n.path), hm, &input, idx);
-		}
+		if (hulls) add_layer(md, layer_name("acd_hull_", n.path), ch.hulls[idx].mesh, &input, idx);
 		++idx;
 	}
-	write_tree_file(par.getString("tree_file"), [&] { return acd::tree_to_json(d, true); });
+	write_tree_file(par.getString("tree_file"), [&] { return acd::tree_to_json(d, true, hulls ? &ch : nullptr); });
+	if (ch.reduced > 0) log_budget(ch, d.max_hull_distance());
 	const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 	const int    uncut = (int) std::count_if(d.nodes.begin(), d.nodes.end(), [](const acd::Node& n) { return n.uncut; });
 	log("Approximate convex decomposition: %d parts, tau %g (model units), max part concavity %g, farthest "
@@ -296,6 +311,12 @@ FilterACD::decompose(const RichParameterList& par, MeshDocument& md, vcg::CallBa
 		{"proxy_faces", d.proxy_faces},       // the search's simplified copy (0: searched on the mesh itself)
 		{"proxy_distance", d.proxy_distance},
 		{"proxy_retries", d.proxy_retries},   // parts whose certificate failed on the mesh, searched again
+		{"hulls_reduced", ch.reduced},          // hulls cut down to the engine's budget
+		{"hull_reach", ch.max_reach},           // farthest a reduced hull reaches beyond its exact hull
+		{"hulls_over_budget", ch.over_budget},
+		{"hulls_thin", ch.thin_count},          // the engine would refuse them (PhysX GPU: in-sphere < extent / 100)
+		// What the collision hulls then hold: each within this of its part (exact hulls: the hull distance).
+		{"collision_hull_distance", d.max_hull_distance() + ch.max_reach},
 	};
 }
 
@@ -345,16 +366,15 @@ std::map<std::string, QVariant> FilterACD::hullUnion(const RichParameterList& pa
 	const auto t0    = std::chrono::steady_clock::now();
 	MeshModel& input = *md.mm();
 	const Run  run   = runDecomposition(par, input, cb);
-	const int  maxv  = par.getInt("max_hull_vertices");
+	const auto engine = acd::Engine(acd::option("engine").choices[par.getEnum("engine")].value);
+	const acd::CollisionHulls ch = acd::collision_hulls(run.d, engine, par.getInt("max_hull_vertices"));
 	std::vector<acd::TriMesh> hulls;
 	int                       idx = 0;
 	for (int li : run.d.parts()) {
-		const acd::Node& n = run.d.nodes[li];
-		acd::TriMesh     h = acd::ConvexHull(n.mesh.V).canonical_mesh();
-		if (maxv > 3 && (int) h.V.size() > maxv) h = acd::simplify_hull(h, maxv);
-		add_layer(md, layer_name("acd_hull_", n.path), h, &input, idx++);
-		hulls.push_back(std::move(h));
+		add_layer(md, layer_name("acd_hull_", run.d.nodes[li].path), ch.hulls[idx].mesh, &input, idx);
+		hulls.push_back(ch.hulls[idx++].mesh);
 	}
+	if (ch.reduced > 0) log_budget(ch, run.d.max_hull_distance());
 	const bool boolean = par.getEnum("merge") == 1;
 	if (cb) cb(99, boolean ? "Boolean union of the hulls..." : "Merging the hulls...");
 	const acd::TriMesh merged = acd::merge_hulls(hulls, boolean);

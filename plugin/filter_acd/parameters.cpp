@@ -83,7 +83,7 @@ void add_decomposition_parameters(RichParameterList& p, const DecompositionParam
 {
 	for (const acd::Option& o : acd::decomposition_options()) {
 		const std::string name = o.name;
-		if ((name == "output_hulls" && !which.output_hulls) || (name == "max_hull_vertices" && !which.max_hull_vertices)) continue;
+		if ((name == "output_hulls" && !which.output_hulls) || ((name == "max_hull_vertices" || name == "engine") && !which.max_hull_vertices)) continue;
 		if (name == "merge_parts" && !which.merge) continue;
 		double value = o.value;
 		if (name == "tau" && which.tau > 0) value = which.tau;

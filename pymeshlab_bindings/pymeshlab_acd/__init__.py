@@ -143,7 +143,7 @@ def decompose(ms, with_tree=True, **params):
     `tree_file` to keep), the tree, read back from the JSON file the filter writes, is under "tree".
 
     Parameters are the filter's (tau, tau_unit, cut_plane_selection, max_parts, merge_parts, output_hulls,
-    max_hull_vertices, hole_handling, hole_order, preprocessing, wrap_alpha, wrap_offset,
+    max_hull_vertices, engine, hole_handling, hole_order, preprocessing, wrap_alpha, wrap_offset,
     on_self_intersection, time_limit, tree_file).
     """
     import tempfile
@@ -213,11 +213,13 @@ def convex_decomposition(vertices, faces=None, tau=None, return_parts=False, **f
 
     `vertices` (n x 3) and `faces` (m x 3), or a `trimesh.Trimesh` (or anything with `vertices` and
     `faces`) as the first argument. `tau` and `filter_params` are generate_approximate_convex_decomposition's
-    (e.g. cut_plane_selection, max_parts, preprocessing, max_hull_vertices); what is not given takes
+    (e.g. cut_plane_selection, max_parts, preprocessing, engine, max_hull_vertices); what is not given takes
     pymeshlab_acd.options.DEFAULTS, as the command line does (preprocessing "auto": an open or dirty mesh
     is welded or alpha wrapped). Returns the convex hulls as a list of (V, F) numpy arrays, one per part; with
     `return_parts=True`, (hulls, parts, result) where parts are the closed pieces of the solid the hulls
-    stand for and result is the filter's result dictionary.
+    stand for and result is the filter's result dictionary. With `engine` (e.g. "physx_gpu") every hull meets
+    that engine's limits and still contains its part; result["collision"]["hulls"] then gives each hull's
+    counts and how far it reaches beyond the exact hull.
     """
     import numpy as np
     load()
@@ -234,7 +236,10 @@ def convex_decomposition(vertices, faces=None, tau=None, return_parts=False, **f
     from .options import DEFAULTS
     params = dict(DEFAULTS, **filter_params)
     params.update(tau=DEFAULTS["tau"] if tau is None else tau, output_hulls=True)
-    res, ids = decompose(ms, with_tree=False, **params)
+    reduced = params.get("engine", "none") != "none" or params.get("max_hull_vertices", 0) > 0
+    res, ids = decompose(ms, with_tree=reduced, **params)
+    if reduced:   # each hull's counts and reach beyond its exact hull
+        res["collision"] = res.pop("tree")["collision"]
     hulls, parts = [], []
     for i in ids:
         m = ms.mesh(i)

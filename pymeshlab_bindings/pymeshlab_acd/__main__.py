@@ -56,7 +56,7 @@ def cmd_decompose(a):
     ms = _meshset(a.mesh)
     src = ms.current_mesh_id()
     params = dict(tau=a.tau, tau_unit=a.tau_unit, cut_plane_selection=a.cut_plane_selection,
-                  max_parts=a.max_parts, merge_parts=a.merge_parts, output_hulls=bool(a.hulls or a.out), max_hull_vertices=a.max_hull_vertices,
+                  max_parts=a.max_parts, merge_parts=a.merge_parts, output_hulls=bool(a.hulls or a.out), max_hull_vertices=a.max_hull_vertices, engine=a.engine,
                   time_limit=a.time_limit, preprocessing=a.preprocessing, wrap_alpha=a.wrap_alpha,
                   wrap_offset=a.wrap_offset, on_self_intersection=a.on_self_intersection,
                   hole_handling=a.hole_handling, hole_order=a.hole_order, threads=a.threads)
@@ -84,6 +84,11 @@ def cmd_decompose(a):
               f"from it")
     elif res.get("welded_vertices"):
         print(f"preprocessing    {res['welded_vertices']} duplicate vertices welded")
+    if a.engine != "none" or res.get("hulls_reduced"):
+        print(f"hulls            {res['hulls_reduced']} of {res['parts']} cut down to {a.engine}'s limits, each "
+              f"still containing its part; they reach at most {res['hull_reach']:.4g} beyond the exact hulls, so "
+              f"every hull lies within {res['collision_hull_distance']:.4g} of its part"
+              + (f"; {res['hulls_thin']} too thin for {a.engine}" if res.get("hulls_thin") else ""))
     if not res.get("tau_convex", True):
         print("note             not every part is certified within tau (see the log above)")
     if a.out:
@@ -174,7 +179,8 @@ def cmd_batch(a):
                         ray_runtime_env=json.loads(a.ray_runtime_env) if a.ray_runtime_env else None,
                         progress=a.progress, tau=a.tau, tau_unit=a.tau_unit,
                         cut_plane_selection=a.cut_plane_selection, max_parts=a.max_parts,
-                        merge_parts=a.merge_parts, max_hull_vertices=a.max_hull_vertices, preprocessing=a.preprocessing,
+                        merge_parts=a.merge_parts, max_hull_vertices=a.max_hull_vertices, engine=a.engine,
+                        preprocessing=a.preprocessing,
                         wrap_alpha=a.wrap_alpha, wrap_offset=a.wrap_offset,
                         time_limit=a.time_limit, hole_handling=a.hole_handling, hole_order=a.hole_order,
                         on_self_intersection=a.on_self_intersection, threads=a.threads, timeout=a.timeout, formats=fmt, scale=a.scale, density=a.density,
@@ -263,7 +269,7 @@ def main(argv=None):
     c.add_argument("--out", help="folder for concavity.ply (vertex quality = concavity)")
     d.add_argument("--out", help="folder for hulls.obj (one object per hull), parts.obj and summary.json")
     add_arguments(d, "tau", "tau_unit", "cut_plane_selection", "max_parts", "merge_parts", "max_hull_vertices",
-                  "preprocessing", "wrap_alpha", "wrap_offset", "time_limit", "hole_handling", "hole_order",
+                  "engine", "preprocessing", "wrap_alpha", "wrap_offset", "time_limit", "hole_handling", "hole_order",
                   "on_self_intersection", "threads")
     d.add_argument("--hulls", action="store_true", help="also add each part's hull as a layer (always with --out)")
     d.add_argument("--part-files", action="store_true", help="also write every part and hull as its own OBJ")
@@ -289,7 +295,7 @@ def main(argv=None):
     b.add_argument("--ray-runtime-env", metavar="JSON", help="Ray runtime_env for the workers, e.g. "
                    "'{\"pip\": [\"/shared/pymeshlab_acd-0.1.0-py3-none-any.whl\"]}'")
     add_arguments(b, "tau", "tau_unit", "cut_plane_selection", "max_parts", "merge_parts", "max_hull_vertices",
-                  "preprocessing", "wrap_alpha", "wrap_offset", "time_limit", "hole_handling", "hole_order",
+                  "engine", "preprocessing", "wrap_alpha", "wrap_offset", "time_limit", "hole_handling", "hole_order",
                   "on_self_intersection", "threads")
     b.add_argument("--timeout", type=float, default=BATCH["timeout"],
                    help="per mesh process, killed after (s; 0: none)")

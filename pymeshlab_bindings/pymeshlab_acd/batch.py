@@ -26,7 +26,8 @@ DEFAULTS = dict(options.DEFAULTS, timeout=1800.0, formats=["obj", "stl"], scale=
 
 # The options that change a mesh's outputs (a rerun with other values redoes the mesh).
 # threads is not one of them: the parts are the same for any count.
-_OUTPUT_KEYS = ("tau", "tau_unit", "cut_plane_selection", "max_parts", "merge_parts", "max_hull_vertices", "preprocessing",
+_OUTPUT_KEYS = ("tau", "tau_unit", "cut_plane_selection", "max_parts", "merge_parts", "max_hull_vertices", "engine",
+                "preprocessing",
                 "wrap_alpha", "wrap_offset", "time_limit", "hole_handling", "hole_order", "on_self_intersection",
                 "formats", "scale", "density", "save_tree")
 
@@ -70,7 +71,7 @@ def decompose_file(src, out_dir, opts):
     t0 = time.perf_counter()
     params = dict(tau=opts["tau"], tau_unit=opts["tau_unit"], cut_plane_selection=opts["cut_plane_selection"],
                   max_parts=opts["max_parts"], merge_parts=opts["merge_parts"], output_hulls=True,
-                  max_hull_vertices=opts["max_hull_vertices"], time_limit=opts["time_limit"],
+                  max_hull_vertices=opts["max_hull_vertices"], engine=opts["engine"], time_limit=opts["time_limit"],
                   wrap_offset=opts["wrap_offset"], hole_handling=opts["hole_handling"], hole_order=opts["hole_order"],
                   on_self_intersection=opts["on_self_intersection"], threads=opts["threads"])
 
@@ -104,7 +105,9 @@ def decompose_file(src, out_dir, opts):
                hull_volume_ratio=hull_vol / vol, preprocessing=pre, faces=ms.mesh(source).face_number(),
                time=time.perf_counter() - t0, error=note, files=written, options_key=options_key(opts),
                worker=f"{socket.gethostname()}:{os.getpid()}", max_parts_reached=res["max_parts_reached"],
-               time_limit_reached=res.get("time_limit_reached", False))
+               time_limit_reached=res.get("time_limit_reached", False), engine=opts["engine"],
+               hulls_reduced=res["hulls_reduced"], hull_reach=res["hull_reach"],
+               collision_hull_distance=res["collision_hull_distance"])
     (pathlib.Path(out_dir) / "summary.json").write_text(json.dumps(rec, indent=1, default=float))
     return rec
 

@@ -9,6 +9,7 @@ DEFAULTS = dict(
     max_parts=0,                    # 0: no limit
     merge_parts=True,               # merge neighbouring parts while their union stays within tau
     max_hull_vertices=0,            # per collision hull; 0: the exact hull
+    engine="none",                  # none | mujoco | pybullet | physx | physx_gpu | unity: hulls within its limits
     preprocessing="auto",           # as given if a valid solid, else welded, else alpha-wrapped
     wrap_alpha=2.0,                 # alpha wrap: alpha, % of the size
     wrap_offset=0.1,                # alpha wrap: offset, % of the size
@@ -30,7 +31,11 @@ HELP = dict(
     max_parts="stop after this many parts (0: no limit; some parts may then exceed tau)",
     merge_parts="merge neighbouring parts while their union stays within tau (--no-merge-parts: the cut "
                 "tree's leaves as they are)",
-    max_hull_vertices="per collision hull (0: exact hulls; 64 suits engines that cap hull sizes)",
+    max_hull_vertices="at most this many vertices per collision hull, on top of --engine's limits (0: none); a "
+                      "reduced hull still contains its part",
+    engine="make every collision hull meet this physics engine's limits (PhysX 255 vertices/255 polygons, its GPU "
+           "path 64/64, Unity 255 triangles) while still containing its part; the summary says how far the "
+           "reduced hulls reach beyond the exact ones",
     preprocessing="auto: as given if the mesh is a valid solid, else welded, else alpha-wrapped; alpha_wrap: "
                   "always wrapped; none: refuse what is not a closed solid",
     wrap_alpha="alpha wrap: alpha, %% of the size (larger bridges bigger holes)",

@@ -57,12 +57,3 @@ TEST_CASE("distance to the boundary of a cube")
 	CHECK_NEAR(h.distance_to_boundary(Vec3(3, 1, 1)), 1.0, 1e-12);
 }
 
-TEST_CASE("a simplified hull keeps at most the vertices asked for, inside the hull")
-{
-	const ConvexHull h(shapes::sphere(3, 1.0).V);
-	const TriMesh    s = simplify_hull(h.mesh(), 12);
-	CHECK(s.V.size() <= 12);
-	CHECK(signed_volume(s) > 0);
-	CHECK(signed_volume(s) <= h.volume);
-	for (const Vec3& v : s.V) CHECK(h.distance_to_boundary(v) <= 1e-12);
-}

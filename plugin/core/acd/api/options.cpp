@@ -47,8 +47,13 @@ std::vector<Option> make_table()
 		{"output_hulls", O::Flag, 0, "Also add part hulls",
 		 "Add the convex hull of each part as a layer too (named acd_hull_<path>).", {}},
 		{"max_hull_vertices", O::Integer, 0, "Maximum hull vertices",
-		 "With output_hulls: limit each hull to this many vertices (0 = no limit), as physics engines require; "
-		 "extra vertices are dropped (the hull shrinks slightly).", {}},
+		 "With output_hulls: at most this many vertices per hull (0 = no limit), on top of the engine's limits. "
+		 "A hull over it keeps as many of its facet planes as fit, so it still contains its part and reaches a "
+		 "little beyond the exact hull (reported).", {}},
+		{"engine", O::Choice, (int) Engine::None, "Physics engine",
+		 "Make every hull meet this engine's limits (and add the hull layers). A hull over them keeps as many of its "
+		 "facet planes as fit: it still contains its part, and the result reports how far it reaches beyond the exact "
+		 "hull.", rows(engines())},
 		{"preprocessing", O::Choice, (int) Preprocessing::Auto, "Preprocessing",
 		 "How the mesh becomes the solid that is cut.", rows(preprocessing_modes())},
 		{"wrap_alpha", O::Number, 2.0, "Alpha wrap: alpha (%)",

@@ -4,6 +4,7 @@
 #pragma once
 
 #include "acd/decompose3/decompose.h"
+#include "acd/hull/bounded_hull.h"
 #include "acd/prepare/prepare_solid.h"
 
 #include <string>

@@ -278,25 +278,4 @@ TriMesh ConvexHull::canonical_mesh() const
 	return out;
 }
 
-TriMesh simplify_hull(const TriMesh& hull, int max_vertices)
-{
-	const auto& P = hull.V;
-	if ((int) P.size() <= max_vertices || max_vertices < 4) return hull;
-	// Start from the pair spanning the hull (farthest from the centroid, then farthest from it).
-	Vec3 c = Vec3::Zero();
-	for (const Vec3& p : P) c += p;
-	c /= (double) P.size();
-	std::vector<double> d(P.size());
-	for (size_t i = 0; i < P.size(); ++i) d[i] = (P[i] - c).squaredNorm();
-	std::vector<Vec3> keep;
-	for (int k = 0; k < max_vertices; ++k) {
-		size_t far = std::max_element(d.begin(), d.end()) - d.begin();
-		keep.push_back(P[far]);
-		for (size_t i = 0; i < P.size(); ++i) d[i] = k == 0 ? (P[i] - P[far]).squaredNorm()
-		                                                   : std::min(d[i], (P[i] - P[far]).squaredNorm());
-		d[far] = -1;
-	}
-	return ConvexHull(keep).canonical_mesh();
-}
-
 } // namespace acd

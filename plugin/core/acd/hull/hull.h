@@ -51,8 +51,4 @@ private:
 	std::unique_ptr<Tree> tree_;
 };
 
-// A hull of at most `max_vertices` vertices chosen among `hull`'s by farthest-point sampling (an
-// inner approximation, as physics engines need bounded vertex counts).
-TriMesh simplify_hull(const TriMesh& hull, int max_vertices);
-
 } // namespace acd

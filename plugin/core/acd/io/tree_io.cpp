@@ -83,11 +83,28 @@ json node2_json(const Node2& n, int id)
 
 } // namespace
 
-std::string tree_to_json(const Decomposition& D, bool geometry)
+static json hulls_json(const CollisionHulls& c)
+{
+	json hulls = json::array();
+	for (size_t i = 0; i < c.hulls.size(); ++i) {
+		const BoundedHull& h = c.hulls[i];
+		hulls.push_back({{"node", c.nodes[i]}, {"vertices", h.vertices}, {"polygons", h.polygons},
+		                 {"triangles", h.triangles}, {"polygon_vertices", h.polygon_vertices}, {"reach", h.reach},
+		                 {"reduced", h.reduced}, {"within_budget", h.within_budget},
+		                 {"inscribed_radius", h.inscribed_radius}, {"extent", h.extent}, {"thin", (bool) c.thin[i]}});
+	}
+	return {{"engine", engine(c.engine).label},
+	        {"budget", {{"vertices", c.budget.vertices}, {"polygons", c.budget.polygons},
+	                    {"triangles", c.budget.triangles}, {"polygon_vertices", c.budget.polygon_vertices}}},
+	        {"max_reach", c.max_reach},
+	        {"hulls", hulls}};
+}
+
+std::string tree_to_json(const Decomposition& D, bool geometry, const CollisionHulls* hulls)
 {
 	json nodes = json::array();
 	for (size_t i = 0; i < D.nodes.size(); ++i) nodes.push_back(node_json(D.nodes[i], (int) i, geometry));
-	const json root = {{"schema", kTreeSchema},
+	json root = {{"schema", kTreeSchema},
 	                   {"dimension", 3},
 	                   {"tau", D.tau},
 	                   {"max_parts_reached", D.max_parts_reached},
@@ -96,6 +113,7 @@ std::string tree_to_json(const Decomposition& D, bool geometry)
 	                   {"films_dropped", D.films_dropped},
 	                   {"merges", D.merges},
 	                   {"nodes", nodes}};
+	if (hulls) root["collision"] = hulls_json(*hulls);
 	return root.dump();
 }
 

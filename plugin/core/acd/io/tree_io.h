@@ -4,6 +4,7 @@
 
 #include "acd/decompose3/decompose.h"
 #include "acd/polygon/polygon.h"
+#include "acd/structure/collision_hulls.h"
 
 #include <string>
 #include <vector>
@@ -13,8 +14,9 @@ namespace acd {
 constexpr int kTreeSchema = 1;
 
 // A 3D tree; with `geometry`, each node's convex hull and each leaf's mesh too (what level_of_detail
-// and rebuild_solid need to serve coarser levels later without recomputing).
-std::string tree_to_json(const Decomposition& D, bool geometry = false);
+// and rebuild_solid need to serve coarser levels later without recomputing). With `hulls`, each collision
+// hull's counts, reach beyond the exact hull and thickness under "hulls" (docs/tree-format.md).
+std::string tree_to_json(const Decomposition& D, bool geometry = false, const CollisionHulls* hulls = nullptr);
 
 // A tree written by tree_to_json(D, true), back into the core's structure: links, planes, leaf meshes;
 // `hulls` (if given) gets each node's stored hull by node id (empty where none was stored). Throws
