@@ -26,7 +26,7 @@ import pathlib
 import pymeshlab
 
 __all__ = ["FILTERS", "plugin_path", "load", "decompose", "decompose_polygon", "level_of_detail", "mesh_ids",
-           "convex_decomposition"]
+           "convex_decomposition", "decompose_robot"]
 
 # Python names of the plugin's filters (keep in sync with FilterACD::pythonFilterName).
 FILTERS = (
@@ -246,3 +246,10 @@ def convex_decomposition(vertices, faces=None, tau=None, return_parts=False, **f
         (hulls if m.label().startswith("acd_hull_") else parts).append(
             (np.array(m.vertex_matrix()), np.array(m.face_matrix())))
     return (hulls, parts, res) if return_parts else hulls
+
+
+def decompose_robot(description, out_dir, **kwargs):
+    """A URDF or MJCF robot with every link's collision meshes replaced by convex hulls; see
+    pymeshlab_acd.robot.decompose_robot."""
+    from .robot import decompose_robot as run
+    return run(description, out_dir, **kwargs)

@@ -1,6 +1,7 @@
 """Command line: python -m pymeshlab_acd {concavity,decompose,structure} [MESH] [options]
               python -m pymeshlab_acd polygon POLYGON [options]
               python -m pymeshlab_acd batch IN_DIR OUT_DIR [--workers N] [--ray ADDRESS|local] [options]
+              python -m pymeshlab_acd robot ROBOT.urdf|ROBOT.xml --out DIR [--engine E] [--format urdf,mjcf,usd]
 
 MESH is a mesh file; --demo takes pymeshlab's bundled bunny instead. POLYGON is a .poly, .svg or plain
 list-of-loops file (see pymeshlab_acd.polygon_io). Every subcommand starts from the same defaults
@@ -200,6 +201,39 @@ def cmd_batch(a):
     return 0
 
 
+def cmd_robot(a):
+    from .robot import decompose_robot
+    packages = {}
+    for spec in a.package or []:
+        name, sep, folder = spec.partition("=")
+        if not sep or not name or not folder:
+            raise ValueError(f"--package {spec}: write it as NAME=FOLDER")
+        packages[name] = folder
+    bar = (lambda text: print(f"\r\033[K{_short(text, 100)}", end="", file=sys.stderr, flush=True)) if a.progress else None
+    opts = {k: getattr(a, k) for k in ("tau", "tau_unit", "cut_plane_selection", "max_parts", "merge_parts",
+                                        "max_hull_vertices", "preprocessing", "wrap_alpha", "wrap_offset",
+                                        "time_limit", "hole_handling", "hole_order", "on_self_intersection", "threads")}
+    fmts = [f.strip() for f in a.format.split(",") if f.strip()]
+    s = decompose_robot(a.description, a.out, packages=packages, engine=a.engine, formats=fmts,
+                        cache=a.cache, cache_dir=a.cache_dir, progress=bar, **opts)
+    if bar:
+        print("\r\033[K", end="", file=sys.stderr)
+    w = max([len(r["link"]) for r in s["links"]] + [4])
+    print(f"{'link':<{w}}  {'parts':>5} {'hulls':>5} {'within (model units)':>20} {'time s':>7}  {'cached':<6} source")
+    for r in s["links"]:
+        if r.get("error"):
+            print(f"{r['link']:<{w}}  {'-':>5} {'-':>5} {'-':>20} {'-':>7}  {'-':<6} {r['source']}: {r['error']}")
+            continue
+        bound = f"{r['collision_hull_distance']:.4g}" + ("" if r["certified"] else " (!)")
+        print(f"{r['link']:<{w}}  {r['parts']:>5} {r['hulls']:>5} {bound:>20} {r['seconds']:>7.2f}  "
+              f"{'yes' if r['cached'] else 'no':<6} {pathlib.Path(r['source']).name}")
+    print(f"{s['robot']}: {len(s['links'])} collision meshes ({s['meshes']} distinct, {s['decomposed']} decomposed, "
+          f"{s['failed']} failed), {s['hulls']} hulls, engine {s['engine']}, tau {s['tau']} {s['tau_unit']}, "
+          f"{s['seconds']:.1f} s; wrote {', '.join(pathlib.Path(p).name for p in s['written'])} and "
+          f"summary.json to {a.out}")
+    return 0 if not s["failed"] else 1
+
+
 def cmd_polygon(a):
     load()
     loops = polygon_io.read_loops(a.polygon)
@@ -303,6 +337,21 @@ def main(argv=None):
     b.add_argument("--save-tree", action="store_true", help="also keep each mesh's tree.json (with geometry: "
                    "coarser levels later, without recomputing, by pymeshlab_acd.level_of_detail)")
     b.add_argument("--no-progress", dest="progress", action="store_false", help="no progress bar")
+    r = sub.add_parser("robot", formatter_class=fmt, help="a URDF or MJCF robot with every link's collision "
+                                                         "replaced by convex hulls (and USD for Isaac Sim)")
+    r.add_argument("description", help="ROBOT.urdf or an MJCF ROBOT.xml")
+    r.add_argument("--out", required=True, help="folder for the rewritten description, collision/ hulls, summary.json")
+    r.add_argument("--package", action="append", metavar="NAME=FOLDER",
+                   help="where package://NAME/ points (else the nearest folder NAME above the description, or "
+                        "ROS_PACKAGE_PATH); repeatable")
+    r.add_argument("--format", default="urdf,mjcf", help="what to write besides the input's own kind: urdf, mjcf, usd")
+    r.add_argument("--cache-dir", help="cache of decompositions by mesh content and options (default "
+                                       "~/.cache/meshlab-acd/hulls)")
+    r.add_argument("--no-cache", dest="cache", action="store_false", help="decompose every mesh again")
+    r.add_argument("--no-progress", dest="progress", action="store_false", help="no progress line")
+    add_arguments(r, "tau", "tau_unit", "cut_plane_selection", "max_parts", "merge_parts", "max_hull_vertices",
+                  "engine", "preprocessing", "wrap_alpha", "wrap_offset", "time_limit", "hole_handling", "hole_order",
+                  "on_self_intersection", "threads")
     for s in (d, b):
         s.add_argument("--scale", type=float, default=1.0, help="metres per model unit (URDF, MJCF)")
         s.add_argument("--density", type=float, default=1000.0, help="kg/m^3, for the mass and inertia")
@@ -310,7 +359,7 @@ def main(argv=None):
     _check_paths(p, a)
     try:
         return {"concavity": cmd_concavity, "decompose": cmd_decompose, "polygon": cmd_polygon,
-                "batch": cmd_batch, "structure": cmd_structure}[a.cmd](a)
+                "batch": cmd_batch, "structure": cmd_structure, "robot": cmd_robot}[a.cmd](a)
     except (pymeshlab.PyMeshLabException, ValueError, OSError) as e:
         print(f"error: {e}", file=sys.stderr)
         return 1
@@ -333,7 +382,7 @@ def _check_paths(p, a):
             a.mesh = BUNNY
         elif not a.mesh:
             p.error("give a mesh file (or --demo for pymeshlab's bunny)")
-    for name in ("mesh", "polygon", "in_dir"):
+    for name in ("mesh", "polygon", "in_dir", "description"):
         path = getattr(a, name, None)
         if path and not os.path.exists(path):
             p.error(f"{path}: no such file or folder")
