@@ -215,7 +215,7 @@ def cmd_robot(a):
                                         "time_limit", "hole_handling", "hole_order", "on_self_intersection", "threads")}
     fmts = [f.strip() for f in a.format.split(",") if f.strip()]
     s = decompose_robot(a.description, a.out, packages=packages, engine=a.engine, formats=fmts,
-                        cache=a.cache, cache_dir=a.cache_dir, progress=bar, **opts)
+                        cache=a.cache, cache_dir=a.cache_dir, resolve_paths=a.resolve_paths, progress=bar, **opts)
     if bar:
         print("\r\033[K", end="", file=sys.stderr)
     w = max([len(r["link"]) for r in s["links"]] + [4])
@@ -348,6 +348,8 @@ def main(argv=None):
     r.add_argument("--cache-dir", help="cache of decompositions by mesh content and options (default "
                                        "~/.cache/meshlab-acd/hulls)")
     r.add_argument("--no-cache", dest="cache", action="store_false", help="decompose every mesh again")
+    r.add_argument("--resolve-paths", action="store_true", help="name kept meshes (visuals) by absolute paths "
+                   "instead of package:// URIs, for simulators without a ROS package resolver (PyBullet)")
     r.add_argument("--no-progress", dest="progress", action="store_false", help="no progress line")
     add_arguments(r, "tau", "tau_unit", "cut_plane_selection", "max_parts", "merge_parts", "max_hull_vertices",
                   "engine", "preprocessing", "wrap_alpha", "wrap_offset", "time_limit", "hole_handling", "hole_order",

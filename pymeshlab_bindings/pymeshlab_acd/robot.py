@@ -73,29 +73,31 @@ def mesh_key(path, opts):
 
 
 def hull_mesh(path, opts, cache_dir=None, threads=0):
-    """The hulls of the mesh file at `path` under `opts` (the filter's options): a dict with "hulls" and
-    "parts" (lists of (V, F)), "result" (the filter's numbers and each hull's report) and "cached".
-    Served from `cache_dir` when an entry for the same bytes and options is there; stored there otherwise.
-    `threads` is not part of the key: the parts are the same for any count."""
+    """The decomposition of the mesh file at `path` under `opts` (the filter's options), as a folder of
+    files: hull_<k>.obj (one object each), parts.obj (part k in object k) and result.json (the filter's
+    numbers and each hull's report). Returns (folder, result, cached, key). The folder is `cache_dir`'s entry
+    for the same bytes and options when there is one; otherwise the mesh is decomposed and the entry
+    stored (without a cache_dir, in a temporary folder the caller removes). `threads` is not part of the
+    key: the parts are the same for any count."""
     key = mesh_key(path, opts)
     entry = pathlib.Path(cache_dir) / key if cache_dir else None
     if entry and (entry / "result.json").exists():
-        result = json.loads((entry / "result.json").read_text())
-        return dict(hulls=_read_objects(entry / "hulls.obj"), parts=_read_objects(entry / "parts.obj"),
-                    result=result, cached=True, key=key)
+        return entry, json.loads((entry / "result.json").read_text()), True, key
     out = _decompose_mesh(path, dict(opts, threads=threads))
-    out.update(cached=False, key=key)
-    if entry:
-        entry.parent.mkdir(parents=True, exist_ok=True)
-        tmp = pathlib.Path(tempfile.mkdtemp(dir=entry.parent, prefix=".tmp-"))
-        write_obj_objects(tmp / "hulls.obj", out["hulls"], "hull")
-        write_obj_objects(tmp / "parts.obj", out["parts"], "part")
-        (tmp / "result.json").write_text(json.dumps(out["result"], indent=1, default=float))
-        try:
-            tmp.rename(entry)            # atomic: a reader sees a whole entry or none
-        except OSError:                  # another process stored it first
-            shutil.rmtree(tmp, ignore_errors=True)
-    return out
+    parent = entry.parent if entry else pathlib.Path(tempfile.gettempdir())
+    parent.mkdir(parents=True, exist_ok=True)
+    tmp = pathlib.Path(tempfile.mkdtemp(dir=parent, prefix=".acd-"))
+    for k, h in enumerate(out["hulls"]):
+        write_obj_objects(tmp / f"hull_{k}.obj", [h], "hull")   # one object per file (PyBullet)
+    write_obj_objects(tmp / "parts.obj", out["parts"], "part")
+    (tmp / "result.json").write_text(json.dumps(out["result"], indent=1, default=float))
+    if not entry:
+        return tmp, out["result"], False, key
+    try:
+        tmp.rename(entry)            # atomic: a reader sees a whole entry or none
+    except OSError:                  # another process stored it first
+        shutil.rmtree(tmp, ignore_errors=True)
+    return entry, out["result"], False, key
 
 
 def _decompose_mesh(path, opts):
@@ -150,14 +152,16 @@ class Robot:
 
 
 def decompose_robot(description, out_dir, packages=None, engine="none", formats=("urdf",), cache=True,
-                    cache_dir=None, progress=None, **filter_options):
+                    cache_dir=None, resolve_paths=False, progress=None, **filter_options):
     """Rewrite a URDF (read with yourdfpy) or MJCF (read with MuJoCo's MjSpec) with every link's collision
     meshes replaced by their convex decomposition's hulls, within `engine`'s limits.
 
     For each link the collision mesh is decomposed, or its visual mesh when it has no collision; primitives
     stay. `formats`: what to write ("urdf" for a URDF input, "mjcf", "usd"); the input's own kind is always
     written. `packages`: {name: folder} for package:// URIs. `cache_dir` (default ~/.cache/meshlab-acd/hulls)
-    holds each decomposition by content; cache=False decomposes everything again. `filter_options` are
+    holds each decomposition by content; cache=False decomposes everything again. `resolve_paths`: the meshes
+    kept (visuals, and collisions that were not decomposed) named by absolute file paths instead of their
+    package:// URIs, for simulators without a ROS package resolver (PyBullet). `filter_options` are
     generate_approximate_convex_decomposition's, from pymeshlab_acd.options.DEFAULTS. `progress(text)` is
     called per mesh. Returns the summary (also written to OUT/summary.json).
     """
@@ -168,7 +172,8 @@ def decompose_robot(description, out_dir, packages=None, engine="none", formats=
     opts = dict(options.DEFAULTS, **filter_options, engine=engine)
     threads = opts.pop("threads")
     cdir = (pathlib.Path(cache_dir) if cache_dir else default_cache()) if cache else None
-    run = dict(opts=opts, threads=threads, cache_dir=cdir, out=out, progress=progress or (lambda s: None))
+    run = dict(opts=opts, threads=threads, cache_dir=cdir, out=out, progress=progress or (lambda s: None),
+               resolve_paths=resolve_paths)
     if robot.kind == "urdf":
         written = _rewrite_urdf(robot, run)
     else:
@@ -195,25 +200,23 @@ def _hulls_for(robot, run, link, source):
         if not source.exists():
             raise FileNotFoundError(f"{source}: no such file")
         run["progress"](f"{robot.name}: {link} ({source.name})")
-        got = hull_mesh(source, run["opts"], run["cache_dir"], run["threads"])
+        folder, res, cached, key = hull_mesh(source, run["opts"], run["cache_dir"], run["threads"])
     except Exception as e:   # a mesh that cannot be decomposed keeps its link's collision as it was
         row["error"] = f"{type(e).__name__}: {e}"
         return None
-    res, key = got["result"], got["key"]
-    row.update(key=key, cached=got["cached"], parts=res["parts"], hulls=len(got["hulls"]),
+    hulls = res["parts"]
+    row.update(key=key, cached=cached, parts=res["parts"], hulls=hulls,
                tau_model_units=res["tau_model_units"], max_hull_distance=res["max_hull_distance"],
                hull_reach=res.get("hull_reach", 0.0), collision_hull_distance=res.get("collision_hull_distance"),
-               certified=bool(res["tau_convex"]), seconds=0.0 if got["cached"] else res["seconds"])
+               certified=bool(res["tau_convex"]), seconds=0.0 if cached else res["seconds"])
     if key not in robot.hull_files:
-        folder = pathlib.Path("collision") / f"{source.stem}_{key[:8]}"
-        (run["out"] / folder).mkdir(parents=True, exist_ok=True)
-        rels = []
-        for k, (V, F) in enumerate(got["hulls"]):
-            rel = folder / f"hull_{k}.obj"
-            write_obj_objects(run["out"] / rel, [(V, F)], "hull")   # one object per file (PyBullet)
-            rels.append(rel.as_posix())
-        write_obj_objects(run["out"] / folder / "parts.obj", got["parts"], "part")
-        robot.hull_files[key] = rels
+        rel = pathlib.Path("collision") / f"{source.stem}_{key[:8]}"
+        (run["out"] / rel).mkdir(parents=True, exist_ok=True)
+        for f in [f"hull_{k}.obj" for k in range(hulls)] + ["parts.obj"]:
+            shutil.copyfile(folder / f, run["out"] / rel / f)
+        robot.hull_files[key] = [(rel / f"hull_{k}.obj").as_posix() for k in range(hulls)]
+    if run["cache_dir"] is None:
+        shutil.rmtree(folder, ignore_errors=True)
     return robot.hull_files[key]
 
 
@@ -252,7 +255,7 @@ def _rewrite_urdf(robot, run):
                 if mesh.get("scale"):
                     m.set("scale", mesh.get("scale"))
                 link_el.insert(at + k, c)
-    _rebase_relative(root, robot, run["out"])
+    _rebase_paths(root, robot, run)
     ET.indent(tree)
     path = run["out"] / f"{robot.name}.urdf"
     tree.write(path, encoding="unicode", xml_declaration=True)
@@ -260,13 +263,20 @@ def _rewrite_urdf(robot, run):
     return [path]
 
 
-def _rebase_relative(root, robot, out):
-    """Mesh paths relative to the input description, made relative to the output (package:// and
-    absolute paths stay as they are)."""
+def _rebase_paths(root, robot, run):
+    """Mesh paths relative to the input description, made relative to the output; with resolve_paths,
+    package:// and file:// URIs as absolute paths too."""
     for m in root.iter("mesh"):
         f = m.get("filename")
-        if f and "://" not in f and not os.path.isabs(f) and not f.startswith("collision/"):
-            m.set("filename", os.path.relpath((robot.base / f).resolve(), out.resolve()))
+        if not f or f.startswith("collision/"):
+            continue
+        if run["resolve_paths"]:
+            try:
+                m.set("filename", str(resolve(f, robot.base, robot.packages).resolve()))
+            except FileNotFoundError:
+                pass
+        elif "://" not in f and not os.path.isabs(f):
+            m.set("filename", os.path.relpath((robot.base / f).resolve(), run["out"].resolve()))
 
 
 def _urdf_to_mjcf(robot, run):
@@ -284,7 +294,9 @@ def _urdf_to_mjcf(robot, run):
     mj = root.find("mujoco")
     if mj is None:
         mj = ET.SubElement(root, "mujoco")
-    ET.SubElement(mj, "compiler", meshdir=".", strippath="false", balanceinertia="true", discardvisual="false")
+    # fusestatic off: the root link stays a body of its own (fixed to the world), which a user can free.
+    ET.SubElement(mj, "compiler", meshdir=".", strippath="false", balanceinertia="true", discardvisual="false",
+                  fusestatic="false")
     tmp = run["out"] / f".{robot.name}.mujoco.urdf"
     tmp.write_text(ET.tostring(root, encoding="unicode"))
     try:

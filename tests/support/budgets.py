@@ -40,3 +40,41 @@ def reach(hull_V, points):
     if len(V) == 0:
         return 0.0
     return float(point_surface_distance(V, h.points, h.simplices)[0].max())
+
+
+def read_obj_objects(path):
+    """(V, F) per `o` object of an OBJ file (the package's hull and part files), parsed here."""
+    out, V, F, base = [], [], [], 1
+    for line in open(path):
+        if line.startswith("o "):
+            if V:
+                out.append((np.array(V, float), np.array(F, np.int64) - base))
+                base += len(V)
+            V, F = [], []
+        elif line.startswith("v "):
+            V.append([float(x) for x in line.split()[1:4]])
+        elif line.startswith("f "):
+            F.append([int(x.split("/")[0]) for x in line.split()[1:4]])
+    if V:
+        out.append((np.array(V, float), np.array(F, np.int64) - base))
+    return out
+
+
+def check_hull_folders(collision_dir, engine):
+    """Every hull file hull_<k>.obj under collision_dir against its folder's parts.obj (part k): within the
+    engine's limits, and holding every vertex of its part. Returns (hulls, within, containing, worst excess
+    over the part's size)."""
+    import pathlib
+    hulls = within_n = holding = 0
+    worst = 0.0
+    for folder in sorted(p for p in pathlib.Path(collision_dir).iterdir() if p.is_dir()):
+        parts = read_obj_objects(folder / "parts.obj")
+        for k, (Vp, _) in enumerate(parts):
+            (Vh, Fh), = read_obj_objects(folder / f"hull_{k}.obj")
+            hulls += 1
+            within_n += within(Vh, Fh, engine)
+            size = float(np.linalg.norm(np.ptp(Vp, 0)))
+            excess = outside(Vp, Vh) / size
+            holding += excess <= 1e-9
+            worst = max(worst, excess)
+    return hulls, within_n, holding, worst

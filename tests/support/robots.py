@@ -42,6 +42,34 @@ def fetch_corpus():
     return meshes
 
 
+def fetch_descriptions():
+    """The whole package (URDFs, meshes of every kind) unpacked from the same wheel, as
+    share/example-robot-data/ under the cache: package://example-robot-data/ resolves to it."""
+    fetch_corpus()
+    root = cache() / "robots" / "share"
+    pkg = root / "example-robot-data"
+    if (pkg / ".complete").exists():
+        return pkg
+    with zipfile.ZipFile(cache() / "robots" / WHEEL) as z:
+        for info in z.infolist():
+            if info.filename.startswith("cmeel.prefix/share/example-robot-data/") and not info.is_dir():
+                dst = root / info.filename[len("cmeel.prefix/share/"):]
+                dst.parent.mkdir(parents=True, exist_ok=True)
+                dst.write_bytes(z.read(info))
+    (pkg / ".complete").touch()
+    return pkg
+
+
+def descriptions(pkg):
+    """Every URDF of the package whose links name meshes, sorted."""
+    import xml.etree.ElementTree as ET
+    out = []
+    for p in sorted((pkg / "robots").rglob("*.urdf")):
+        if any(True for _ in ET.parse(p).getroot().iter("mesh")):
+            out.append(p)
+    return out
+
+
 def corpus(meshes):
     return sorted(p for p in meshes.rglob("*") if p.suffix.lower() in (".stl", ".obj", ".ply"))
 

@@ -105,6 +105,10 @@ ConvexHull intersect(const std::vector<Plane>& planes, const Vec3& c)
 				}
 		corners.push_back(meet(planes, best[0], best[1], best[2]));
 	}
+	// In sorted order: a polygon with more than three corners is triangulated the same way every run.
+	std::sort(corners.begin(), corners.end(), [](const Vec3& a, const Vec3& b) {
+		return std::lexicographical_compare(a.data(), a.data() + 3, b.data(), b.data() + 3);
+	});
 	return ConvexHull(corners);
 }
 
@@ -172,6 +176,24 @@ std::vector<Plane> sorted_planes(const ConvexHull& h, const Vec3& c)
 	return planes;
 }
 
+// The vertices solved from the planes carry rounding: a point of P may lie a few ulps outside. Scaled
+// about c just enough that every point of P is inside (a change of the order of that rounding).
+ConvexHull hold(ConvexHull h, const std::vector<Vec3>& P, const Vec3& c)
+{
+	for (int round = 0; round < 3; ++round) {
+		double grow = 0;
+		for (const Plane& f : h.facet_plane) {
+			const double room = f.d - f.n.dot(c);
+			for (const Vec3& p : P) grow = std::max(grow, f.eval(p) / room);
+		}
+		if (grow <= 0) break;
+		std::vector<Vec3> V = h.canonical_mesh().V;   // sorted, as in intersect()
+		for (Vec3& v : V) v = c + (v - c) * (1 + 2 * grow + 1e-15);
+		h = ConvexHull(V);
+	}
+	return h;
+}
+
 } // namespace
 
 BoundedHull bounded_hull(const ConvexHull& exact, const HullBudget& budget, bool measure_inscribed)
@@ -208,8 +230,9 @@ BoundedHull bounded_hull(const ConvexHull& exact, const HullBudget& budget, bool
 		if (!fits(count(next), budget)) break;
 		best = std::move(next);
 	}
-	BoundedHull b = result(best, exact, true, budget);
-	if (measure_inscribed) b.inscribed_radius = inscribed_radius(best);
+	const ConvexHull held = hold(std::move(best), P, c);
+	BoundedHull      b    = result(held, exact, true, budget);
+	if (measure_inscribed) b.inscribed_radius = inscribed_radius(held);
 	return b;
 }
 
