@@ -225,7 +225,7 @@ def _rewrite_urdf(robot, run):
     import yourdfpy
     model = yourdfpy.URDF.load(str(robot.path), build_scene_graph=False, load_meshes=False,
                                load_collision_meshes=False,
-                               filename_handler=lambda f: str(resolve(f, robot.base, robot.packages)))
+                               filename_handler=lambda fname: str(resolve(fname, robot.base, robot.packages)))
     robot.model = model
     tree = ET.parse(robot.path, parser=ET.XMLParser(target=ET.TreeBuilder(insert_comments=True)))
     root = tree.getroot()
@@ -318,7 +318,7 @@ def _rewrite_mjcf(robot, run):
     spec = mujoco.MjSpec.from_file(str(robot.path))
     meshdir = pathlib.Path(spec.modelfiledir or robot.base) / (spec.meshdir or "")
     meshes = {m.name: m for m in spec.meshes}
-    added = {}
+    added, used = {}, {g.name for g in spec.geoms if g.name}
     for g in list(spec.geoms):
         if g.type != mujoco.mjtGeom.mjGEOM_MESH or (g.contype == 0 and g.conaffinity == 0):
             continue
@@ -338,7 +338,7 @@ def _rewrite_mjcf(robot, run):
                               contype=g.contype, conaffinity=g.conaffinity, condim=g.condim, group=3,
                               friction=list(g.friction), priority=g.priority, margin=g.margin, gap=g.gap,
                               solref=list(g.solref), solimp=list(g.solimp), solmix=g.solmix, density=0)
-            h.name = f"{g.name or g.meshname}_hull_{k}"
+            h.name = _unique(f"{g.name or body.name or g.meshname}_hull_{k}", used)
         g.contype, g.conaffinity = 0, 0
     spec.compile()
     text = spec.to_xml()
@@ -347,6 +347,14 @@ def _rewrite_mjcf(robot, run):
     path.write_text(text.replace(str(run["out"].resolve()) + os.sep, ""))
     robot.mjcf = path
     return [path]
+
+
+def _unique(name, used):
+    out, k = name, 1
+    while out in used:
+        out, k = f"{name}_{k}", k + 1
+    used.add(out)
+    return out
 
 
 # ---- USD ---------------------------------------------------------------------------------------
@@ -388,7 +396,7 @@ def _link_hulls(robot, run):
         import yourdfpy
         model = yourdfpy.URDF.load(str(robot.urdf), build_scene_graph=True, load_meshes=False,
                                    load_collision_meshes=False,
-                                   filename_handler=lambda f: str(resolve(f, run["out"], robot.packages)))
+                                   filename_handler=lambda fname: str(resolve(fname, run["out"], robot.packages)))
         for name, link in model.link_map.items():
             for c in link.collisions:
                 m = c.geometry.mesh

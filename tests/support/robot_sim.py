@@ -75,8 +75,10 @@ def _lowest_mujoco(m, d, geoms):
             k = m.geom_dataid[g]
             V = m.mesh_vert[m.mesh_vertadr[k]:m.mesh_vertadr[k] + m.mesh_vertnum[k]]
             low = min(low, float((V @ d.geom_xmat[g].reshape(3, 3).T + d.geom_xpos[g])[:, 2].min()))
-        else:
-            low = min(low, float(d.geom_xpos[g][2] - m.geom_rbound[g]))
+        else:   # its bounding box in the geom frame, turned into the world (exact for boxes and spheres)
+            R = d.geom_xmat[g].reshape(3, 3)
+            c, h = m.geom_aabb[g][:3], m.geom_aabb[g][3:]
+            low = min(low, float(d.geom_xpos[g][2] + R[2] @ c - np.abs(R[2]) @ h))
     return low
 
 
