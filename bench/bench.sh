@@ -3,7 +3,8 @@
 # robot corpus with the certificate and the peers on a sample (bench/bench_robots.py); with --rotation,
 # the pose-dependence table instead (bench/bench_rotation.py); with --scale, time against face count on a
 # scan and a CAD series (bench/bench_scale.py); with --open, open meshes against closed ones
-# (bench/bench_open.py); with --polygons, the 2D table against
+# (bench/bench_open.py); with --robot-descriptions, every URDF of example-robot-data through the robot command,
+# loaded and dropped in PyBullet and MuJoCo (bench/bench_robot_descriptions.py); with --polygons, the 2D table against
 # CGAL's Partition_2 (bench/bench_polygons.py). Installs what it needs on top of
 # scripts/setup.sh: the peers from PyPI and the C++ metric/peer tools.
 set -euo pipefail
@@ -17,6 +18,10 @@ if [ "${1:-}" = "--polygons" ]; then   # 2D: ours vs CGAL Partition_2 (no Python
 	exec python3 "$here/bench_polygons.py" "$@"
 fi
 cmake --build "$ACD_BUILD_DIR" --target acd_metrics cgal_acd_peer -- -j"$(nproc)" >/dev/null
+if [ "${1:-}" = "--robot-descriptions" ]; then   # whole robots: rewrite, load, drop, budgets, cache
+	shift
+	exec python3 "$here/bench_robot_descriptions.py" "$@"
+fi
 if [ "${1:-}" = "--robots" ]; then   # the example-robot-data corpus: ours on every mesh, the peers on a sample
 	shift
 	exec python3 "$here/bench_robots.py" "$@"

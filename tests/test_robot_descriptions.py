@@ -3,8 +3,9 @@ URDF of example-robot-data rewritten, loaded in PyBullet and (as MJCF) in MuJoCo
 on a floor in both; an MJCF round trip; hulls within the engine's limits and holding their parts (Qhull and
 trimesh); the USD stage; the cache; the same bytes for any thread count. Skipped without the robot data.
 
-The corpus runs at tau 10% (a coarse, fast setting: what is tested here is the rewriting, loading and
-simulation, not the decomposition's detail); bench/bench_robot_descriptions.py runs it at the defaults."""
+The corpus runs at coarse settings (tau 10%, alpha 5% for open meshes, 2 s of cutting per mesh: what is
+tested here is the rewriting, loading and simulation, not the decomposition's detail), through the shared
+cache; bench/bench_robot_descriptions.py runs it at the defaults."""
 import filecmp
 import subprocess
 import sys
@@ -22,6 +23,7 @@ pytest.importorskip("mujoco")
 pytest.importorskip("pybullet")
 
 COARSE = dict(tau=10.0)
+CORPUS = dict(tau=10.0, wrap_alpha=5.0, time_limit=2.0)
 
 
 @pytest.fixture(scope="module")
@@ -42,7 +44,7 @@ def corpus(package, tmp_path_factory):
     for urdf in robots.descriptions(package):
         name = urdf.relative_to(package / "robots").parts[0] + "__" + urdf.stem
         done[name] = (urdf, out / name, decompose_robot(urdf, out / name, engine="physx_gpu",
-                                                         formats=("urdf", "mjcf"), resolve_paths=True, **COARSE))
+                                                         formats=("urdf", "mjcf"), resolve_paths=True, **CORPUS))
     return done
 
 
