@@ -231,7 +231,12 @@ def cmd_robot(a):
           f"{s['failed']} failed), {s['hulls']} hulls, engine {s['engine']}, tau {s['tau']} {s['tau_unit']}, "
           f"{s['seconds']:.1f} s; wrote {', '.join(pathlib.Path(p).name for p in s['written'])} and "
           f"summary.json to {a.out}")
-    return 0 if not s["failed"] else 1
+    for f, e in s["format_errors"].items():
+        print(f"error: {f}: {e}", file=sys.stderr)
+    if s["mjcf_inertia_fixed"]:
+        print(f"note: in the MJCF, {len(s['mjcf_inertia_fixed'])} inertias MuJoCo refuses were made physical "
+              f"(principal moments raised): {', '.join(s['mjcf_inertia_fixed'][:5])}")
+    return 0 if not s["failed"] and not s["format_errors"] else 1
 
 
 def cmd_polygon(a):

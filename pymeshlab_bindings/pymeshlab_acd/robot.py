@@ -178,15 +178,22 @@ def decompose_robot(description, out_dir, packages=None, engine="none", formats=
         written = _rewrite_urdf(robot, run)
     else:
         written = _rewrite_mjcf(robot, run)
+    format_errors = {}
     for f in formats:
+        if f not in WRITERS and f not in ("urdf", "mjcf"):
+            raise ValueError(f"unknown format {f!r}: urdf, mjcf or usd")
         if f != robot.kind and f in WRITERS:
-            written.append(WRITERS[f](robot, run))
+            try:
+                written.append(WRITERS[f](robot, run))
+            except Exception as e:   # the rewritten description stands; say what the conversion refused
+                format_errors[f] = f"{type(e).__name__}: {e}"
     summary = dict(robot=str(robot.path), kind=robot.kind, engine=engine, tau=opts["tau"], tau_unit=opts["tau_unit"],
                    links=robot.rows, hulls=sum(r.get("hulls", 0) for r in robot.rows),
                    meshes=len({r["key"] for r in robot.rows if "key" in r}),
                    decomposed=sum(1 for r in robot.rows if r.get("cached") is False),
                    failed=sum(1 for r in robot.rows if r.get("error")),
-                   seconds=time.perf_counter() - t0, written=[str(p) for p in written])
+                   seconds=time.perf_counter() - t0, written=[str(p) for p in written],
+                   format_errors=format_errors, mjcf_inertia_fixed=getattr(robot, "inertia_fixed", []))
     (out / "summary.json").write_text(json.dumps(summary, indent=1, default=float))
     return summary
 
@@ -291,6 +298,7 @@ def _urdf_to_mjcf(robot, run):
             m = c.find("geometry/mesh")
             if m is not None and not m.get("filename", "").startswith("collision/"):
                 link.remove(c)   # a mesh we could not decompose: MuJoCo would need its path
+    robot.inertia_fixed = _valid_inertias(root)
     mj = root.find("mujoco")
     if mj is None:
         mj = ET.SubElement(root, "mujoco")
@@ -307,6 +315,31 @@ def _urdf_to_mjcf(robot, run):
     finally:
         tmp.unlink()
     return path
+
+
+def _valid_inertias(root):
+    """MuJoCo refuses an inertia tensor that no body has (a negative or zero principal moment with the
+    others not zero, or one moment above the sum of the other two), which URDFs carry for sensor frames and
+    rounded CAD exports. For the MJCF only, each such tensor keeps its principal axes with its moments
+    raised just enough to be physical. Returns the links changed."""
+    fixed = []
+    for link in root.findall("link"):
+        el = link.find("inertial/inertia")
+        if el is None:
+            continue
+        g = lambda k: float(el.get(k, 0))   # noqa: E731
+        I = np.array([[g("ixx"), g("ixy"), g("ixz")], [g("ixy"), g("iyy"), g("iyz")], [g("ixz"), g("iyz"), g("izz")]])
+        e, R = np.linalg.eigh(I)
+        if not np.any(I) or (e[0] > 0 and e[0] + e[1] >= e[2]):
+            continue
+        floor = max(1e-9, 1e-3 * abs(e).max())
+        e = np.maximum(e, floor)
+        e[:2] = np.maximum(e[:2], e[2] / 2)   # sorted: the two smaller moments reach half the largest
+        J = R @ np.diag(e) @ R.T
+        for k, (i, j) in zip(("ixx", "iyy", "izz", "ixy", "ixz", "iyz"), ((0, 0), (1, 1), (2, 2), (0, 1), (0, 2), (1, 2))):
+            el.set(k, f"{J[i, j]:.9g}")
+        fixed.append(link.get("name"))
+    return fixed
 
 
 # ---- MJCF -------------------------------------------------------------------------------------
