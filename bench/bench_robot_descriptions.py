@@ -20,7 +20,12 @@ from support.robots import cache, descriptions, fetch_descriptions   # noqa: E40
 
 
 def settled(r):
-    return r is not None and r["finite"] and r["lowest"] >= -0.03 * r["size"] and r["speed"] < 0.1 * r["size"]
+    """At rest on the floor: not through it (the lowest point, or PyBullet's deepest contact, within 3% of
+    the size below it) and still."""
+    if r is None:
+        return False
+    deep = r["depth"] if "depth" in r else -r["lowest"]
+    return r["finite"] and deep <= 0.03 * r["size"] and r["lowest"] > -0.2 * r["size"] and r["speed"] < 0.1 * r["size"]
 
 
 def check(urdf, out, name, engine, share):
@@ -28,7 +33,7 @@ def check(urdf, out, name, engine, share):
     try:
         row["pybullet_shapes"] = pybullet_load(out / f"{name}.urdf", share)
         pb = pybullet_drop(out / f"{name}.urdf", share)
-        row.update(pybullet_free=pb["free"], pybullet_settled=settled(pb), pybullet_lowest=pb["lowest"] / pb["size"])
+        row.update(pybullet_free=pb["free"], pybullet_settled=settled(pb), pybullet_depth=pb["depth"] / pb["size"])
     except Exception as e:
         row["pybullet_error"] = str(e)[:200]
     try:

@@ -49,7 +49,10 @@ def corpus(package, tmp_path_factory):
 
 
 def settled(r):
-    return r["finite"] and r["lowest"] >= -0.03 * r["size"] and r["speed"] < 0.1 * r["size"]
+    """At rest on the floor: not through it (the lowest point, or PyBullet's deepest contact, within 3% of
+    the size below it) and still."""
+    deep = r["depth"] if "depth" in r else -r["lowest"]
+    return r["finite"] and deep <= 0.03 * r["size"] and r["lowest"] > -0.2 * r["size"] and r["speed"] < 0.1 * r["size"]
 
 
 def test_every_urdf_is_rewritten_and_loads_in_pybullet_and_mujoco(corpus, package):
@@ -59,7 +62,9 @@ def test_every_urdf_is_rewritten_and_loads_in_pybullet_and_mujoco(corpus, packag
         failed_meshes += [f"{name}: {r['link']}: {r['error']}" for r in s["links"] if r.get("error")]
         files = collision_files(out / f"{urdf.stem}.urdf")
         n = sum(len(v) for v in files.values())
-        assert n == s["hulls"] > 0, name
+        assert n == s["hulls"], name
+        if n == 0:   # collisions all primitives (a1, laikago): nothing to decompose, the file as it was
+            assert not s["links"] and any(True for _ in ET.parse(urdf).getroot().iter("collision")), name
         # Every hull file named is there, and each link kept its primitives.
         assert all((out / f).exists() for v in files.values() for f in v), name
         before = ET.parse(urdf).getroot()

@@ -31,8 +31,8 @@ def _pb_box(p, body, cid):
 
 def pybullet_drop(urdf, search=None, seconds=4.0, gap=0.02):
     """Drop the robot (free base, as loadURDF leaves it) onto a plane. Returns the lowest point of its
-    links' bounding boxes at rest, its size, the fastest link speed at the end and whether the base is
-    free (a base of zero mass is fixed in PyBullet)."""
+    links' bounding boxes at rest (margins included), the deepest contact, its size, the fastest link
+    speed at the end and whether the base is free (a base of zero mass is fixed in PyBullet)."""
     import pybullet as p
     cid = p.connect(p.DIRECT)
     try:
@@ -51,12 +51,16 @@ def pybullet_drop(urdf, search=None, seconds=4.0, gap=0.02):
         for _ in range(int(seconds * 240)):
             p.stepSimulation(physicsClientId=cid)
         lo, _ = _pb_box(p, body, cid)
+        # Link boxes carry Bullet's collision margin: how deep the hulls are in the floor is read from the
+        # contacts (negative distances); the boxes tell a fall through the floor.
+        contacts = p.getContactPoints(bodyA=body, physicsClientId=cid)
+        depth = max([0.0] + [-c[8] for c in contacts])
         speeds = [np.linalg.norm(p.getBaseVelocity(body, physicsClientId=cid)[0])]
         speeds += [np.linalg.norm(p.getLinkState(body, k, computeLinkVelocity=1, physicsClientId=cid)[6])
                    for k in range(n)]
         free = p.getDynamicsInfo(body, -1, physicsClientId=cid)[0] > 0
-        return dict(lowest=float(lo[2]), size=size, speed=float(np.nanmax(speeds)), free=free,
-                    finite=bool(np.all(np.isfinite(lo))))
+        return dict(lowest=float(lo[2]), depth=float(depth), contacts=len(contacts), size=size,
+                    speed=float(np.nanmax(speeds)), free=free, finite=bool(np.all(np.isfinite(lo))))
     finally:
         p.disconnect(cid)
 

@@ -1,10 +1,13 @@
-// A minimal parallel loop over std::thread (no TBB or OpenMP dependency for hosts to match), within a
-// thread budget: a decomposition runs on the threads its caller grants (ThreadLimit), and the loops it
-// nests share them instead of multiplying them.
+// A minimal parallel loop over one pool of std::threads (no TBB or OpenMP dependency for hosts to match),
+// within a thread budget: a decomposition runs on the threads its caller grants (ThreadLimit), and the
+// loops it nests share them instead of multiplying them.
 #pragma once
 
 #include <algorithm>
 #include <atomic>
+#include <condition_variable>
+#include <deque>
+#include <functional>
 #include <exception>
 #include <mutex>
 #include <thread>
@@ -39,20 +42,92 @@ inline unsigned available_threads()
 	return b > 0 ? (unsigned) b : std::max(1u, std::thread::hardware_concurrency());
 }
 
-// Runs fn(0..n-1) on the budget's threads; each of them passes on its share of the budget to the loops
-// fn nests. The first exception is rethrown after all finish. Which thread runs which i never changes
-// a result: fn(i) writes only what belongs to i.
+// One pool of threads for the process, created on first use and kept: a loop borrows as many of them as
+// its budget grants, and the thread that runs the loop works on it too. A borrowed thread that starts a
+// loop of its own offers it to idle threads the same way, so nested loops share the pool instead of
+// creating threads, and a loop never waits for a thread that is not already working on it (no deadlock
+// however deep the nesting).
+class ThreadPool
+{
+public:
+	struct Job
+	{
+		std::function<void()> work;        // takes iterations until none is left
+		unsigned              wanted = 0;  // helpers it may still take on
+		unsigned              running = 0; // helpers working on it now
+		std::condition_variable done;
+	};
+
+	static ThreadPool& instance()
+	{
+		static ThreadPool pool(std::max(1u, std::thread::hardware_concurrency()) - 1);
+		return pool;
+	}
+	~ThreadPool()
+	{
+		{
+			std::lock_guard<std::mutex> lock(mutex_);
+			stop_ = true;
+		}
+		wake_.notify_all();
+		for (std::thread& t : threads_) t.join();
+	}
+	// Runs job.work on the calling thread and on up to job.wanted idle pool threads; returns when all are done.
+	void run(Job& job)
+	{
+		if (job.wanted > 0 && !threads_.empty()) {
+			std::lock_guard<std::mutex> lock(mutex_);
+			queue_.push_back(&job);
+		}
+		wake_.notify_all();
+		job.work();
+		std::unique_lock<std::mutex> lock(mutex_);
+		queue_.erase(std::remove(queue_.begin(), queue_.end(), &job), queue_.end());   // no helper joins now
+		job.done.wait(lock, [&] { return job.running == 0; });
+	}
+
+private:
+	explicit ThreadPool(unsigned n)
+	{
+		for (unsigned i = 0; i < n; ++i) threads_.emplace_back([this] { serve(); });
+	}
+	void serve()
+	{
+		std::unique_lock<std::mutex> lock(mutex_);
+		for (;;) {
+			wake_.wait(lock, [&] { return stop_ || !queue_.empty(); });
+			if (stop_) return;
+			Job* job = queue_.front();
+			if (--job->wanted == 0) queue_.pop_front();
+			++job->running;
+			lock.unlock();
+			job->work();
+			lock.lock();
+			if (--job->running == 0) job->done.notify_all();
+		}
+	}
+	std::mutex               mutex_;
+	std::condition_variable  wake_;
+	std::deque<Job*>         queue_;
+	std::vector<std::thread> threads_;
+	bool                     stop_ = false;
+};
+
+// Runs fn(0..n-1) on the budget's threads (the caller and pool threads); each of them passes on its share
+// of the budget to the loops fn nests. The first exception is rethrown after all finish. Which thread runs
+// which i never changes a result: fn(i) writes only what belongs to i.
 template <class Fn>
 void parallel_for(size_t n, Fn fn)
 {
-	const unsigned           budget  = available_threads();
-	const size_t             workers = std::max<size_t>(1, std::min<size_t>(budget, n));
-	const int                share   = (int) std::max<size_t>(1, budget / workers);
-	std::atomic<size_t>      next{0};
-	std::exception_ptr       error;
-	std::mutex               error_mutex;
-	std::vector<std::thread> pool;
-	auto                     work = [&] {
+	const unsigned      budget  = available_threads();
+	const size_t        workers = std::max<size_t>(1, std::min<size_t>(budget, n));
+	const int           share   = (int) std::max<size_t>(1, budget / workers);
+	std::atomic<size_t> next{0};
+	std::exception_ptr  error;
+	std::mutex          error_mutex;
+	ThreadPool::Job     job;
+	job.wanted = (unsigned) workers - 1;
+	job.work   = [&] {
         ThreadLimit limit(share);
         for (size_t i; (i = next++) < n;) {
             try {
@@ -64,9 +139,10 @@ void parallel_for(size_t n, Fn fn)
             }
         }
 	};
-	for (size_t w = 1; w < workers; ++w) pool.emplace_back(work);
-	work();
-	for (auto& t : pool) t.join();
+	if (workers == 1)
+		job.work();
+	else
+		ThreadPool::instance().run(job);
 	if (error) std::rethrow_exception(error);
 }
 
