@@ -30,6 +30,8 @@ def settled(r):
 
 def check(urdf, out, name, engine, share):
     row = {}
+    if not (out / "collision").exists():
+        return row   # collisions all primitives: nothing of ours to load
     try:
         row["pybullet_shapes"] = pybullet_load(out / f"{name}.urdf", share)
         pb = pybullet_drop(out / f"{name}.urdf", share)
@@ -55,6 +57,8 @@ def main():
     ap.add_argument("--only", nargs="*")
     ap.add_argument("--out", default=str(cache() / "bench-robot-descriptions"))
     ap.add_argument("--results", default=str(HERE / "results" / "robot_descriptions"))
+    ap.add_argument("--recheck", action="store_true", help="keep the times and counts of the last run, write "
+                    "every robot again from its cache (nothing decomposed) and redo the checks")
     a = ap.parse_args()
     from pymeshlab_acd.robot import decompose_robot
     pkg = fetch_descriptions()
@@ -62,6 +66,8 @@ def main():
     out_root = pathlib.Path(a.out)
     hull_cache = out_root / "hull-cache"
     import shutil
+    if a.recheck:
+        return recheck(a, pkg, out_root, hull_cache, share)
     shutil.rmtree(out_root, ignore_errors=True)
     rows = []
     for urdf in descriptions(pkg):
@@ -92,6 +98,27 @@ def main():
     print(table(rows, a.engine))
 
 
+def recheck(a, pkg, out_root, hull_cache, share):
+    from pymeshlab_acd.robot import decompose_robot
+    res = pathlib.Path(a.results)
+    old = json.loads(res.with_suffix(".json").read_text())
+    rows = []
+    for row in old["rows"]:
+        urdf = next(p for p in descriptions(pkg) if row["robot"] == p.relative_to(pkg / "robots").parts[0] + "/" + p.stem)
+        out = out_root / row["robot"]
+        s = decompose_robot(urdf, out, engine=old["engine"], formats=("urdf", "mjcf", "usd"), cache_dir=hull_cache,
+                            resolve_paths=True)
+        assert s["decomposed"] == 0 and s["hulls"] == row["hulls"], row["robot"]
+        keep = {k: row[k] for k in ("robot", "links", "meshes", "decomposed", "hulls", "failed", "seconds",
+                                    "cached_seconds", "cached_decomposed", "errors", "decompose_seconds")}
+        keep.update(check(urdf, out, urdf.stem, old["engine"], share))
+        rows.append(keep)
+        print(json.dumps(keep), flush=True)
+    res.with_suffix(".json").write_text(json.dumps(dict(engine=old["engine"], rows=rows), indent=1))
+    res.with_suffix(".md").write_text(table(rows, old["engine"]))
+    print(table(rows, old["engine"]))
+
+
 def table(rows, engine):
     yes = lambda v: "-" if v is None else ("yes" if v else "no")   # noqa: E731
     lines = [f"Engine `{engine}`; every URDF of example-robot-data 6.0.0 that names meshes. Time: the first run "
@@ -100,8 +127,12 @@ def table(rows, engine):
              "MuJoCo compiles / settles | hulls in budget, holding their part |",
              "|---|---:|---:|---:|---:|---:|---:|---|---|---|"]
     for r in rows:
-        pb = "error" if "pybullet_error" in r else f"yes / {yes(r['pybullet_settled'])}" + ("" if r.get("pybullet_free") else " (fixed base)")
-        mj = "error" if "mujoco_error" in r else f"yes / {yes(r.get('mujoco_settled'))}"
+        if r["hulls"] == 0:
+            pb = mj = "- (collisions all primitives)"
+        else:
+            pb = ("error" if "pybullet_error" in r else f"yes / {yes(r['pybullet_settled'])}"
+                  + ("" if r.get("pybullet_free") else " (fixed base)"))
+            mj = "error" if "mujoco_error" in r else f"yes / {yes(r.get('mujoco_settled'))}"
         hb = f"{r.get('within_budget', 0)} / {r.get('containing', 0)} of {r.get('hull_files', 0)}"
         lines.append(f"| {r['robot']} | {r['links']} | {r['decomposed']} | {r['hulls']} | {r['failed']} | "
                      f"{r['seconds']:.1f} | {r['cached_seconds']:.2f} | {pb} | {mj} | {hb} |")

@@ -330,11 +330,11 @@ def _valid_inertias(root):
         g = lambda k: float(el.get(k, 0))   # noqa: E731
         I = np.array([[g("ixx"), g("ixy"), g("ixz")], [g("ixy"), g("iyy"), g("iyz")], [g("ixz"), g("iyz"), g("izz")]])
         e, R = np.linalg.eigh(I)
-        if not np.any(I) or (e[0] > 0 and e[0] + e[1] >= e[2]):
+        if not np.any(I) or (e[0] > 0 and e[0] + e[1] >= e[2] * (1 + 1e-6)):   # MuJoCo's test has a tolerance
             continue
         floor = max(1e-9, 1e-3 * abs(e).max())
         e = np.maximum(e, floor)
-        e[:2] = np.maximum(e[:2], e[2] / 2)   # sorted: the two smaller moments reach half the largest
+        e[:2] = np.maximum(e[:2], e[2] / 2 * (1 + 1e-5))   # sorted: the two smaller reach half the largest
         J = R @ np.diag(e) @ R.T
         for k, (i, j) in zip(("ixx", "iyy", "izz", "ixy", "ixz", "iyz"), ((0, 0), (1, 1), (2, 2), (0, 1), (0, 2), (1, 2))):
             el.set(k, f"{J[i, j]:.9g}")
