@@ -1,6 +1,6 @@
 """Whole robots in PyBullet and MuJoCo (used by tests/test_robot_descriptions.py and
 bench/bench_robot_descriptions.py): load a rewritten description, lift it just above a floor, let it fall
-with its joints limp (damped), and report where it comes to rest. Self-collision stays off in both, as
+(PyBullet: joints held by its default motors; MuJoCo: limp, damped joints), and report where it comes to rest. Self-collision stays off in both, as
 PyBullet's loadURDF has it by default: the question is the hulls against the floor."""
 import xml.etree.ElementTree as ET
 
@@ -45,9 +45,7 @@ def pybullet_drop(urdf, search=None, seconds=4.0, gap=0.02):
         size = float(np.linalg.norm(hi - lo))
         pos, orn = p.getBasePositionAndOrientation(body, physicsClientId=cid)
         p.resetBasePositionAndOrientation(body, [pos[0], pos[1], pos[2] - lo[2] + gap * size], orn, physicsClientId=cid)
-        n = p.getNumJoints(body, physicsClientId=cid)
-        for k in range(n):   # limp, damped joints
-            p.setJointMotorControl2(body, k, p.VELOCITY_CONTROL, force=0.02 * size, physicsClientId=cid)
+        n = p.getNumJoints(body, physicsClientId=cid)   # joints held by PyBullet's default velocity motors
         for _ in range(int(seconds * 240)):
             p.stepSimulation(physicsClientId=cid)
         lo, _ = _pb_box(p, body, cid)
