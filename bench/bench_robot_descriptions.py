@@ -20,12 +20,13 @@ from support.robots import cache, descriptions, fetch_descriptions   # noqa: E40
 
 
 def settled(r):
-    """At rest on the floor: not through it (the lowest point, or PyBullet's deepest contact, within 3% of
-    the size below it) and still."""
+    """On the floor: not through it (the lowest point, or PyBullet's deepest contact, within 3% of the size
+    below it) and not thrown about (no point faster than the size per second after the fall: a limp
+    robot may still roll a little on round links, an explosion is far faster)."""
     if r is None:
         return False
     deep = r["depth"] if "depth" in r else -r["lowest"]
-    return r["finite"] and deep <= 0.03 * r["size"] and r["lowest"] > -0.2 * r["size"] and r["speed"] < 0.1 * r["size"]
+    return r["finite"] and deep <= 0.03 * r["size"] and r["lowest"] > -0.2 * r["size"] and r["speed"] < r["size"]
 
 
 def check(urdf, out, name, engine, share):

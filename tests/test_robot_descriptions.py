@@ -49,10 +49,11 @@ def corpus(package, tmp_path_factory):
 
 
 def settled(r):
-    """At rest on the floor: not through it (the lowest point, or PyBullet's deepest contact, within 3% of
-    the size below it) and still."""
+    """On the floor: not through it (the lowest point, or PyBullet's deepest contact, within 3% of the size
+    below it) and not thrown about (no point faster than the size per second after the fall: a limp
+    robot may still roll a little on round links, an explosion is far faster)."""
     deep = r["depth"] if "depth" in r else -r["lowest"]
-    return r["finite"] and deep <= 0.03 * r["size"] and r["lowest"] > -0.2 * r["size"] and r["speed"] < 0.1 * r["size"]
+    return r["finite"] and deep <= 0.03 * r["size"] and r["lowest"] > -0.2 * r["size"] and r["speed"] < r["size"]
 
 
 def test_every_urdf_is_rewritten_and_loads_in_pybullet_and_mujoco(corpus, package):
@@ -62,7 +63,7 @@ def test_every_urdf_is_rewritten_and_loads_in_pybullet_and_mujoco(corpus, packag
         failed_meshes += [f"{name}: {r['link']}: {r['error']}" for r in s["links"] if r.get("error")]
         files = collision_files(out / f"{urdf.stem}.urdf")
         n = sum(len(v) for v in files.values())
-        assert n == s["hulls"], name
+        assert n == s["hulls"] and not s["format_errors"], (name, s["format_errors"])
         if n == 0:   # collisions all primitives (a1, laikago): nothing to decompose, the file as it was
             assert not s["links"] and any(True for _ in ET.parse(urdf).getroot().iter("collision")), name
         # Every hull file named is there, and each link kept its primitives.

@@ -303,13 +303,16 @@ def _urdf_to_mjcf(robot, run):
     if mj is None:
         mj = ET.SubElement(root, "mujoco")
     # fusestatic off: the root link stays a body of its own (fixed to the world), which a user can free.
+    # boundmass/boundinertia: massless frames on moving joints (virtual links) get MuJoCo's smallest mass.
     ET.SubElement(mj, "compiler", meshdir=".", strippath="false", balanceinertia="true", discardvisual="false",
-                  fusestatic="false")
+                  fusestatic="false", boundmass="1e-6", boundinertia="1e-12")
     tmp = run["out"] / f".{robot.name}.mujoco.urdf"
     tmp.write_text(ET.tostring(root, encoding="unicode"))
     try:
         spec = mujoco.MjSpec.from_file(str(tmp))
         spec.compile()
+        # The written file keeps the bounds, so that it compiles as this did.
+        spec.compiler.boundmass, spec.compiler.boundinertia, spec.compiler.balanceinertia = 1e-6, 1e-12, True
         path = run["out"] / f"{robot.name}.xml"
         path.write_text(spec.to_xml())
     finally:
