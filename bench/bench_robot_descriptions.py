@@ -36,7 +36,10 @@ def check(urdf, out, name, engine, share):
     try:
         row["pybullet_shapes"] = pybullet_load(out / f"{name}.urdf", share)
         pb = pybullet_drop(out / f"{name}.urdf", share)
-        row.update(pybullet_free=pb["free"], pybullet_settled=settled(pb), pybullet_depth=pb["depth"] / pb["size"])
+        if pb is None:
+            row.update(pybullet_free=None, pybullet_settled=None, pybullet_note="no state reported (over 127 links)")
+        else:
+            row.update(pybullet_free=pb["free"], pybullet_settled=settled(pb), pybullet_depth=pb["depth"] / pb["size"])
     except Exception as e:
         row["pybullet_error"] = str(e)[:200]
     try:
@@ -132,7 +135,8 @@ def table(rows, engine):
             pb = mj = "- (collisions all primitives)"
         else:
             pb = ("error" if "pybullet_error" in r else f"yes / {yes(r['pybullet_settled'])}"
-                  + ("" if r.get("pybullet_free") else " (fixed base)"))
+                  + ("" if r.get("pybullet_free") or r.get("pybullet_note") else " (fixed base)")
+                  + (f" ({r['pybullet_note']})" if r.get("pybullet_note") else ""))
             mj = "error" if "mujoco_error" in r else f"yes / {yes(r.get('mujoco_settled'))}"
         hb = f"{r.get('within_budget', 0)} / {r.get('containing', 0)} of {r.get('hull_files', 0)}"
         lines.append(f"| {r['robot']} | {r['links']} | {r['decomposed']} | {r['hulls']} | {r['failed']} | "

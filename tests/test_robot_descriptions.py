@@ -58,14 +58,15 @@ def settled(r):
 
 def test_every_urdf_is_rewritten_and_loads_in_pybullet_and_mujoco(corpus, package):
     assert len(corpus) >= 60
-    failed_meshes, dropped = [], {"pybullet": 0, "mujoco": 0}
+    failed_meshes, dropped, unreported = [], {"pybullet": 0, "mujoco": 0}, []
     for name, (urdf, out, s) in corpus.items():
         failed_meshes += [f"{name}: {r['link']}: {r['error']}" for r in s["links"] if r.get("error")]
         files = collision_files(out / f"{urdf.stem}.urdf")
         n = sum(len(v) for v in files.values())
         assert n == s["hulls"] and not s["format_errors"], (name, s["format_errors"])
-        if n == 0:   # collisions all primitives (a1, laikago): nothing to decompose, the file as it was
-            assert not s["links"] and any(True for _ in ET.parse(urdf).getroot().iter("collision")), name
+        if n == 0:   # collisions all primitives (a1, laikago), or meshes on another machine (romeo_laas_small)
+            assert all(r.get("error") for r in s["links"]), name
+            assert any(True for _ in ET.parse(urdf).getroot().iter("collision")), name
         # Every hull file named is there, and each link kept its primitives.
         assert all((out / f).exists() for v in files.values() for f in v), name
         before = ET.parse(urdf).getroot()
@@ -82,7 +83,10 @@ def test_every_urdf_is_rewritten_and_loads_in_pybullet_and_mujoco(corpus, packag
         shapes = pybullet_load(out / f"{urdf.stem}.urdf")
         assert shapes >= n, name
         pb = pybullet_drop(out / f"{urdf.stem}.urdf")
-        if pb["free"]:
+        if pb is None:   # PyBullet's limit, not ours: the original description fails the same way
+            assert pybullet_drop(urdf) is None, name
+            unreported.append(name)
+        elif pb["free"]:
             assert settled(pb), (name, pb)
             dropped["pybullet"] += 1
         assert mujoco_compile(out / f"{urdf.stem}.xml")["geoms"] >= n, name
@@ -90,7 +94,8 @@ def test_every_urdf_is_rewritten_and_loads_in_pybullet_and_mujoco(corpus, packag
         if mj is not None:
             assert settled(mj), (name, mj)
             dropped["mujoco"] += 1
-    print(f"\n{len(corpus)} robots; dropped and settled: {dropped}; meshes the package lacks: {failed_meshes}")
+    print(f"\n{len(corpus)} robots; dropped and settled: {dropped}; PyBullet reports no state for {unreported}; "
+          f"meshes the package lacks: {failed_meshes}")
     # Only meshes the descriptions name by absolute paths of another machine (romeo's NAOqi SDK) fail.
     assert all("no such file" in f for f in failed_meshes)
     assert dropped["pybullet"] >= 10 and dropped["mujoco"] >= 30

@@ -9,6 +9,7 @@ Each distinct (mesh content, options) is decomposed once: a content-addressed ca
 and of the options) serves a re-run, another robot sharing the mesh, or a batch.
 """
 import copy
+import functools
 import hashlib
 import json
 import os
@@ -64,9 +65,18 @@ def _package_dir(name, base_dir, packages):
 
 
 # ---- one mesh, decomposed once per content and options --------------------------------------------
+@functools.lru_cache(maxsize=None)
+def _plugin_digest():
+    """The plugin binary's hash: another build may cut differently, so it is part of every key."""
+    from . import plugin_path
+    return hashlib.sha256(pathlib.Path(plugin_path()).read_bytes()).hexdigest()
+
+
 def mesh_key(path, opts):
+    """The cache key of a mesh file under options: its bytes, the options and the plugin build."""
     h = hashlib.sha256()
     h.update(pathlib.Path(path).read_bytes())
+    h.update(_plugin_digest().encode())
     h.update(json.dumps({k: opts[k] for k in sorted(opts)}, sort_keys=True, default=str).encode())
     h.update(f"v{_KEY_VERSION}".encode())
     return h.hexdigest()[:24]

@@ -32,7 +32,8 @@ def _pb_box(p, body, cid):
 def pybullet_drop(urdf, search=None, seconds=4.0, gap=0.02):
     """Drop the robot (free base, as loadURDF leaves it) onto a plane. Returns the lowest point of its
     links' bounding boxes at rest (margins included), the deepest contact, its size, the fastest link
-    speed at the end and whether the base is free (a base of zero mass is fixed in PyBullet)."""
+    speed at the end and whether the base is free (a base of zero mass is fixed in PyBullet). None when
+    PyBullet cannot report the body's state."""
     import pybullet as p
     cid = p.connect(p.DIRECT)
     try:
@@ -41,6 +42,10 @@ def pybullet_drop(urdf, search=None, seconds=4.0, gap=0.02):
         p.setGravity(0, 0, -9.81, physicsClientId=cid)
         p.createMultiBody(0, p.createCollisionShape(p.GEOM_PLANE, physicsClientId=cid), physicsClientId=cid)
         body = p.loadURDF(str(urdf), basePosition=[0, 0, 10], physicsClientId=cid)
+        try:
+            p.getBasePositionAndOrientation(body, physicsClientId=cid)
+        except p.error:   # PyBullet reports no state for a body of over 127 links (tiago_dual's 129)
+            return None
         lo, hi = _pb_box(p, body, cid)
         size = float(np.linalg.norm(hi - lo))
         pos, orn = p.getBasePositionAndOrientation(body, physicsClientId=cid)

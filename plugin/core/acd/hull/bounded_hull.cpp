@@ -176,6 +176,16 @@ std::vector<Plane> sorted_planes(const ConvexHull& h, const Vec3& c)
 	return planes;
 }
 
+// Corners closer than `tol` made one (the first in sorted order): planes that nearly meet in a point give
+// clusters of corners and sliver facets that an engine's own hull would count differently.
+ConvexHull weld_corners(const ConvexHull& h, double tol)
+{
+	std::vector<Vec3> kept;
+	for (const Vec3& v : h.canonical_mesh().V)
+		if (std::none_of(kept.begin(), kept.end(), [&](const Vec3& k) { return (k - v).norm() <= tol; })) kept.push_back(v);
+	return ConvexHull(kept);
+}
+
 // The vertices solved from the planes carry rounding: a point of P may lie a few ulps outside. Scaled
 // about c just enough that every point of P is inside (a change of the order of that rounding).
 ConvexHull hold(ConvexHull h, const std::vector<Vec3>& P, const Vec3& c)
@@ -230,7 +240,7 @@ BoundedHull bounded_hull(const ConvexHull& exact, const HullBudget& budget, bool
 		if (!fits(count(next), budget)) break;
 		best = std::move(next);
 	}
-	const ConvexHull held = hold(std::move(best), P, c);
+	const ConvexHull held = hold(weld_corners(best, 1e-6 * size), P, c);
 	BoundedHull      b    = result(held, exact, true, budget);
 	if (measure_inscribed) b.inscribed_radius = inscribed_radius(held);
 	return b;
