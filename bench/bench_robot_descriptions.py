@@ -132,7 +132,7 @@ def table(rows, engine):
              "|---|---:|---:|---:|---:|---:|---:|---|---|---|"]
     for r in rows:
         if r["hulls"] == 0:
-            pb = mj = "- (collisions all primitives)"
+            pb = mj = "- (its meshes are not in the package)" if r["failed"] else "- (collisions all primitives)"
         else:
             pb = ("error" if "pybullet_error" in r else f"yes / {yes(r['pybullet_settled'])}"
                   + ("" if r.get("pybullet_free") or r.get("pybullet_note") else " (fixed base)")

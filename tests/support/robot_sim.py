@@ -109,6 +109,7 @@ def mujoco_drop(xml, scene, seconds=4.0, gap=0.02):
         if g.contype or g.conaffinity:
             g.contype, g.conaffinity = 1, 0
     spec.option.integrator = mujoco.mjtIntegrator.mjINT_IMPLICITFAST
+    spec.memory = 1 << 29   # thousands of hulls on the floor at once need more than the default arena
     spec.worldbody.add_geom(name="floor", type=mujoco.mjtGeom.mjGEOM_PLANE, size=[50, 50, 0.1], contype=0,
                             conaffinity=1)
     m = spec.compile()
