@@ -4,6 +4,7 @@
     python bench/robot_picture.py ROBOT.urdf OUT_DIR docs/robot.png
 (OUT_DIR: the robot command's output for ROBOT.urdf, written with --resolve-paths.)
 """
+import pathlib
 import sys
 
 import matplotlib
@@ -12,6 +13,9 @@ import matplotlib.pyplot as plt   # noqa: E402
 import numpy as np   # noqa: E402
 import yourdfpy   # noqa: E402
 from mpl_toolkits.mplot3d.art3d import Poly3DCollection   # noqa: E402
+
+sys.path.insert(0, str(pathlib.Path(__file__).resolve().parent))
+from bench import read_obj   # noqa: E402
 
 
 def triangles(scene):
@@ -26,16 +30,6 @@ def triangles(scene):
         tris.append(V[F])
     tris = np.concatenate(tris)
     return tris, [(0.7, 0.7, 0.72, 1.0)] * len(tris)
-
-
-def read_obj(path):
-    V, F = [], []
-    for line in open(path):
-        if line.startswith("v "):
-            V.append([float(x) for x in line.split()[1:4]])
-        elif line.startswith("f "):
-            F.append([int(x.split("/")[0]) - 1 for x in line.split()[1:4]])
-    return np.array(V), np.array(F)
 
 
 def draw(ax, tris, colours, title):
@@ -56,7 +50,6 @@ def draw(ax, tris, colours, title):
 
 
 def main(urdf, out_dir, png):
-    import pathlib
     from pymeshlab_acd.robot import resolve
     name = pathlib.Path(urdf).stem
     base = pathlib.Path(urdf).parent
@@ -73,6 +66,7 @@ def main(urdf, out_dir, png):
             O = (c.origin if c.origin is not None else np.eye(4))
             s = np.ones(3) * (c.geometry.mesh.scale if c.geometry.mesh.scale is not None else 1.0)
             V, F = read_obj(pathlib.Path(out_dir) / c.geometry.mesh.filename)
+            V, F = np.asarray(V, float), np.asarray(F)
             M = T @ O
             hulls.append(((V * s) @ M[:3, :3].T + M[:3, 3], F))
     fig = plt.figure(figsize=(10, 5), dpi=110)
