@@ -24,8 +24,6 @@ import numpy as np
 from . import options
 from .export import write_obj_objects
 
-# Formats a robot can be written as: name -> (file suffix, writer(robot, out_dir) -> path). Rows below.
-PRIMITIVES = ("box", "cylinder", "sphere", "capsule")
 _KEY_VERSION = 1   # bump when what a cache entry holds changes
 
 
@@ -243,17 +241,16 @@ def _rewrite_urdf(robot, run):
     model = yourdfpy.URDF.load(str(robot.path), build_scene_graph=False, load_meshes=False,
                                load_collision_meshes=False,
                                filename_handler=lambda fname: str(resolve(fname, robot.base, robot.packages)))
-    robot.model = model
     tree = ET.parse(robot.path, parser=ET.XMLParser(target=ET.TreeBuilder(insert_comments=True)))
     root = tree.getroot()
     for link_el in root.findall("link"):
         name = link_el.get("name")
-        link = model.link_map[name]
-        colls = [c for c in link_el.findall("collision")]
+        if name not in model.link_map:
+            continue
+        colls = link_el.findall("collision")
         meshes = [c for c in colls if c.find("geometry/mesh") is not None]
         if not colls:   # no collision: its visual meshes stand in
             meshes = [v for v in link_el.findall("visual") if v.find("geometry/mesh") is not None]
-            link.collisions = []
         for el in meshes:
             mesh = el.find("geometry/mesh")
             rels = _hulls_for(robot, run, name, resolve(mesh.get("filename"), robot.base, robot.packages))
@@ -407,7 +404,7 @@ def _unique(name, used):
 def _usd(robot, run):
     """A .usda stage: the robot as Xforms (a URDF's links at their joint frames in the zero configuration),
     each hull a Mesh prim with UsdPhysics' CollisionAPI and MeshCollisionAPI (approximation convexHull)."""
-    from pxr import Gf, Sdf, Usd, UsdGeom, UsdPhysics
+    from pxr import Gf, Usd, UsdGeom, UsdPhysics
     path = run["out"] / f"{robot.name}.usda"
     stage = Usd.Stage.CreateNew(str(path))
     UsdGeom.SetStageUpAxis(stage, UsdGeom.Tokens.z)
@@ -426,7 +423,6 @@ def _usd(robot, run):
             UsdPhysics.CollisionAPI.Apply(m.GetPrim())
             UsdPhysics.MeshCollisionAPI.Apply(m.GetPrim()).CreateApproximationAttr(UsdPhysics.Tokens.convexHull)
     stage.GetRootLayer().Save()
-    del Sdf
     return path
 
 
@@ -474,6 +470,7 @@ def _link_hulls(robot, run):
         yield name, np.eye(4), by_link[name]
 
 
+# What a robot can be written as besides its own kind: format -> writer(robot, run) -> the path written.
 WRITERS = {
     "mjcf": _urdf_to_mjcf,
     "usd": _usd,
