@@ -15,18 +15,8 @@ HERE = pathlib.Path(__file__).resolve().parent
 sys.path.insert(0, str(HERE.parent / "tests"))
 
 from support.budgets import check_hull_folders   # noqa: E402
-from support.robot_sim import mujoco_compile, mujoco_drop, pybullet_drop, pybullet_load   # noqa: E402
+from support.robot_sim import mujoco_compile, mujoco_drop, pybullet_drop, pybullet_load, settled   # noqa: E402
 from support.robots import cache, descriptions, fetch_descriptions   # noqa: E402
-
-
-def settled(r):
-    """On the floor: not through it (the lowest point, or PyBullet's deepest contact, within 3% of the size
-    below it) and not thrown about (no point faster than the size per second after the fall: a limp
-    robot may still roll a little on round links, an explosion is far faster)."""
-    if r is None:
-        return False
-    deep = r["depth"] if "depth" in r else -r["lowest"]
-    return r["finite"] and deep <= 0.03 * r["size"] and r["lowest"] > -0.2 * r["size"] and r["speed"] < r["size"]
 
 
 def check(urdf, out, name, engine, share):

@@ -15,7 +15,7 @@ import numpy as np
 import pytest
 
 from support.budgets import check_hull_folders
-from support.robot_sim import collision_files, mujoco_compile, mujoco_drop, pybullet_drop, pybullet_load
+from support.robot_sim import collision_files, mujoco_compile, mujoco_drop, pybullet_drop, pybullet_load, settled
 
 robots = pytest.importorskip("support.robots")
 pytest.importorskip("yourdfpy")
@@ -46,14 +46,6 @@ def corpus(package, tmp_path_factory):
         done[name] = (urdf, out / name, decompose_robot(urdf, out / name, engine="physx_gpu",
                                                          formats=("urdf", "mjcf"), resolve_paths=True, **CORPUS))
     return done
-
-
-def settled(r):
-    """On the floor: not through it (the lowest point, or PyBullet's deepest contact, within 3% of the size
-    below it) and not thrown about (no point faster than the size per second after the fall: a limp
-    robot may still roll a little on round links, an explosion is far faster)."""
-    deep = r["depth"] if "depth" in r else -r["lowest"]
-    return r["finite"] and deep <= 0.03 * r["size"] and r["lowest"] > -0.2 * r["size"] and r["speed"] < r["size"]
 
 
 def test_every_urdf_is_rewritten_and_loads_in_pybullet_and_mujoco(corpus, package):

@@ -15,7 +15,6 @@
 #include <acd/structure/skeleton.h>
 #include <acd/io/tree_io.h>
 #include <acd/structure/collision_hulls.h>
-#include <acd/api/options.h>
 #include <acd/decompose3/decompose_mesh.h>
 #include <acd/mesh/measures.h>
 #include <acd/solid/solid.h>
@@ -242,7 +241,7 @@ FilterACD::decompose(const RichParameterList& par, MeshDocument& md, vcg::CallBa
 	const double        size  = run.size;
 	acd::Decomposition& d     = run.d;
 
-	const auto engine = acd::Engine(acd::option("engine").choices[par.getEnum("engine")].value);
+	const auto engine = acdml::hull_engine(par);
 	const bool hulls  = par.getBool("output_hulls") || engine != acd::Engine::None;
 	const acd::CollisionHulls ch = hulls ? acd::collision_hulls(d, engine, par.getInt("max_hull_vertices")) : acd::CollisionHulls{};
 	int idx = 0;
@@ -366,7 +365,7 @@ std::map<std::string, QVariant> FilterACD::hullUnion(const RichParameterList& pa
 	const auto t0    = std::chrono::steady_clock::now();
 	MeshModel& input = *md.mm();
 	const Run  run   = runDecomposition(par, input, cb);
-	const auto engine = acd::Engine(acd::option("engine").choices[par.getEnum("engine")].value);
+	const auto engine = acdml::hull_engine(par);
 	const acd::CollisionHulls ch = acd::collision_hulls(run.d, engine, par.getInt("max_hull_vertices"));
 	std::vector<acd::TriMesh> hulls;
 	int                       idx = 0;

@@ -168,6 +168,8 @@ acd::PolygonOptions polygon_options(const RichParameterList& par, double size)
 	return o;
 }
 
+acd::Engine hull_engine(const RichParameterList& par) { return chosen<acd::Engine>(par, opt("engine")); }
+
 acd::PrepareOptions prepare_options(const RichParameterList& par)
 {
 	acd::PrepareOptions o;

@@ -12,6 +12,7 @@
 #include <wrap/callback.h>   // vcg::CallBackPos
 
 #include <acd/decompose3/decompose.h>
+#include <acd/hull/bounded_hull.h>
 #include <acd/polygon/polygon.h>
 #include <acd/prepare/prepare_solid.h>
 
@@ -37,6 +38,9 @@ double tau_in_model_units(const RichParameterList& par, double size);
 // The core's options from the parameters (sizes in model units; progress through `cb`).
 acd::DecomposeOptions decompose_options(const RichParameterList& par, double size, vcg::CallBackPos* cb);
 acd::PolygonOptions   polygon_options(const RichParameterList& par, double size);
+
+// The engine whose limits the hulls meet (engine).
+acd::Engine hull_engine(const RichParameterList& par);
 
 // How the mesh is prepared (preprocessing, wrap_alpha, wrap_offset, on_self_intersection).
 acd::PrepareOptions prepare_options(const RichParameterList& par);

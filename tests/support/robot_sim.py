@@ -68,6 +68,16 @@ def pybullet_drop(urdf, search=None, seconds=4.0, gap=0.02):
         p.disconnect(cid)
 
 
+def settled(r):
+    """On the floor: not through it (the lowest point, or PyBullet's deepest contact, within 3% of the size
+    below it) and not thrown about (no point faster than the size per second after the fall: a limp
+    robot may still roll a little on round links, an explosion is far faster)."""
+    if r is None:
+        return False
+    deep = r["depth"] if "depth" in r else -r["lowest"]
+    return r["finite"] and deep <= 0.03 * r["size"] and r["lowest"] > -0.2 * r["size"] and r["speed"] < r["size"]
+
+
 def mujoco_compile(xml):
     import mujoco
     m = mujoco.MjModel.from_xml_path(str(xml))

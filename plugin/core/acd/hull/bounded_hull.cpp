@@ -7,7 +7,6 @@
 #include <Eigen/Eigenvalues>
 
 #include <algorithm>
-#include <cstring>
 #include <map>
 #include <set>
 
@@ -143,9 +142,15 @@ BoundedHull result(const ConvexHull& h, const ConvexHull& exact, bool reduced, c
 			for (const Plane& f : exact.facet_plane) out = std::max(out, f.eval(v));
 			if (out > 0) b.reach = std::max(b.reach, exact.distance_to_boundary(v));
 		}
+	return b;
+}
+
+// The in-sphere's radius and the largest distance between two vertices: what an engine's thinness test reads.
+void measure(BoundedHull& b, const ConvexHull& h)
+{
+	b.inscribed_radius = inscribed_radius(h);
 	for (size_t i = 0; i < b.mesh.V.size(); ++i)
 		for (size_t j = i + 1; j < b.mesh.V.size(); ++j) b.extent = std::max(b.extent, (b.mesh.V[i] - b.mesh.V[j]).norm());
-	return b;
 }
 
 // The exact hull's facet planes, each computed from its corners in sorted order and sorted by value
@@ -210,7 +215,7 @@ BoundedHull bounded_hull(const ConvexHull& exact, const HullBudget& budget, bool
 {
 	if (fits(count(exact), budget)) {
 		BoundedHull b = result(exact, exact, false, budget);
-		if (measure_inscribed) b.inscribed_radius = inscribed_radius(exact);
+		if (measure_inscribed) measure(b, exact);
 		return b;
 	}
 	const std::vector<Vec3>  P      = exact.canonical_mesh().V;
@@ -242,7 +247,7 @@ BoundedHull bounded_hull(const ConvexHull& exact, const HullBudget& budget, bool
 	}
 	const ConvexHull held = hold(weld_corners(best, 1e-6 * size), P, c);
 	BoundedHull      b    = result(held, exact, true, budget);
-	if (measure_inscribed) b.inscribed_radius = inscribed_radius(held);
+	if (measure_inscribed) measure(b, held);
 	return b;
 }
 

@@ -43,7 +43,7 @@ struct BoundedHull
 	bool    reduced          = false;    // planes were dropped to meet the budget
 	bool    within_budget    = true;
 	double  inscribed_radius = 0;        // of the largest ball inside (measured when asked)
-	double  extent           = 0;        // largest distance between two vertices
+	double  extent           = 0;        // largest distance between two vertices (measured when asked)
 };
 
 // `exact` itself when it meets the budget; otherwise the intersection of as many of its facet planes (and
