@@ -33,9 +33,13 @@ def meshes(tmp_path_factory):
     return d, shapes
 
 
-def batch(in_dir, out_dir, *extra, timeout=900):
+def batch(in_dir, out_dir, *extra, timeout=900, cache=None):
+    """The batch CLI at tau 4, with a decomposition cache of its own beside out_dir unless `cache` is given
+    (so that each test decomposes, and nothing is read from the user's cache)."""
+    cache = cache or out_dir.with_name(out_dir.name + "-cache")
     p = subprocess.run([sys.executable, "-m", "pymeshlab_acd", "batch", str(in_dir), str(out_dir), "--tau", "4",
-                        "--no-progress", *extra], capture_output=True, text=True, timeout=timeout)
+                        "--no-progress", "--cache-dir", str(cache), *extra], capture_output=True, text=True,
+                       timeout=timeout)
     print(p.stdout[-3000:], p.stderr[-3000:])
     assert p.returncode == 0, p.stderr
     with open(out_dir / "summary.csv") as f:
@@ -99,6 +103,52 @@ def test_batch_with_two_workers_resumes_and_records_failures(meshes, tmp_path):
     # Other options make other outputs: everything is redone.
     rows4 = batch(in_dir, out, "--workers", "2", "--max-hull-vertices", "16")
     assert all(rows4[n]["status"] == "ok" for n in shapes)
+
+
+def test_batch_and_robots_share_one_cache(meshes, tmp_path):
+    """A second batch over the same meshes, into another folder, decomposes nothing and writes the same
+    bytes; a robot whose link names one of those meshes finds it decomposed too (the same cache key for
+    the same bytes and options), and a batch after the robot reuses what the robot stored."""
+    import filecmp
+    import shutil
+    from pymeshlab_acd import decompose_robot
+    in_dir, shapes = meshes
+    cache = tmp_path / "cache"
+    first = batch(in_dir, tmp_path / "a", "--workers", "2", cache=cache)
+    assert all(first[n]["cached"] == "False" for n in shapes)
+    again = batch(in_dir, tmp_path / "b", "--workers", "2", cache=cache)
+    assert all(again[n]["cached"] == "True" and again[n]["status"] == "ok" for n in shapes)
+    assert again["notes.obj"]["status"] == "failed"
+    files = sorted(p.relative_to(tmp_path / "a") for p in (tmp_path / "a").rglob("*")
+                   if p.is_file() and p.name not in ("summary.json", "summary.csv"))
+    assert len(files) > 20
+    assert all(filecmp.cmp(tmp_path / "a" / f, tmp_path / "b" / f, shallow=False) for f in files)
+    check_outputs(in_dir, tmp_path / "b", again, shapes)
+
+    # A robot of one link whose collision is l_prism.obj, at the batch's options.
+    robot_dir = tmp_path / "robot"
+    robot_dir.mkdir()
+    shutil.copyfile(in_dir / "l_prism.obj", robot_dir / "arm.obj")
+    shutil.copyfile(in_dir / "sub" / "torus.obj", robot_dir / "wheel.obj")
+    (robot_dir / "r.urdf").write_text(
+        '<robot name="r"><link name="base"><collision><geometry><mesh filename="arm.obj"/></geometry></collision>'
+        '</link><link name="w"><collision><geometry><mesh filename="wheel.obj"/></geometry></collision></link>'
+        '<joint name="j" type="fixed"><parent link="base"/><child link="w"/></joint></robot>')
+    s = decompose_robot(robot_dir / "r.urdf", tmp_path / "robot_out", cache_dir=cache, tau=4)
+    assert s["failed"] == 0 and s["meshes"] == 2 and s["decomposed"] == 0
+    assert s["hulls"] == int(first["l_prism.obj"]["parts"]) + int(first["sub/torus.obj"]["parts"])
+
+    # Other bytes: the robot decomposes them and stores them; a batch over them then finds them.
+    V, F = box()
+    ms = pymeshlab.MeshSet()
+    add_mesh(ms, V * [1, 2, 3], F)
+    ms.save_current_mesh(str(robot_dir / "arm.obj"), save_vertex_color=False, save_face_color=False)
+    s = decompose_robot(robot_dir / "r.urdf", tmp_path / "robot_out2", cache_dir=cache, tau=4)
+    assert s["decomposed"] == 1
+    (robot_dir / "r.urdf").unlink()
+    rows = batch(robot_dir, tmp_path / "c", "--workers", "1", cache=cache)
+    assert rows["arm.obj"]["cached"] == "True" and rows["wheel.obj"]["cached"] == "True"
+    assert rows["arm.obj"]["parts"] == "1"
 
 
 def test_batch_output_inside_its_input_is_not_read_back(tmp_path):

@@ -158,14 +158,14 @@ def test_the_usd_stage_has_a_collision_hull_per_hull(package, tmp_path):
 def test_a_second_run_decomposes_nothing(package, tmp_path, monkeypatch):
     """Everything from the cache: the filter is never called (it would raise), and the outputs are the
     same bytes. (The time this saves is measured in bench/bench_robot_descriptions.py.)"""
-    from pymeshlab_acd import decompose_robot, robot
+    from pymeshlab_acd import decompose_robot, hull_cache
     urdf = package / "robots" / "ur_description" / "urdf" / "ur5_robot.urdf"
     first = decompose_robot(urdf, tmp_path / "a", cache_dir=tmp_path / "cache", **COARSE)
     assert first["decomposed"] == first["meshes"] > 0
 
     def refuse(*a, **k):
         raise AssertionError("decomposed again")
-    monkeypatch.setattr(robot, "_decompose_mesh", refuse)
+    monkeypatch.setattr(hull_cache, "_decompose_mesh", refuse)
     again = decompose_robot(urdf, tmp_path / "b", cache_dir=tmp_path / "cache", **COARSE)
     assert again["decomposed"] == 0 and again["failed"] == 0 and all(r["cached"] for r in again["links"])
     assert _same_files(tmp_path / "a", tmp_path / "b")

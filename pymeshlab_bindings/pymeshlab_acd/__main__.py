@@ -185,7 +185,7 @@ def cmd_batch(a):
                         wrap_alpha=a.wrap_alpha, wrap_offset=a.wrap_offset,
                         time_limit=a.time_limit, hole_handling=a.hole_handling, hole_order=a.hole_order,
                         on_self_intersection=a.on_self_intersection, threads=a.threads, timeout=a.timeout, formats=fmt, scale=a.scale, density=a.density,
-                        save_tree=a.save_tree)
+                        save_tree=a.save_tree, cache=a.cache, cache_dir=a.cache_dir)
     w = max([len(pathlib.Path(r["file"]).name) for r in records] + [4])
     print(f"{'file':<{w}}  {'status':<11} {'parts':>5} {'concavity %':>11} {'hulls/vol':>9} {'time s':>7}  "
           f"{'preprocessing':<15} note")
@@ -350,15 +350,16 @@ def main(argv=None):
                    help="where package://NAME/ points (else the nearest folder NAME above the description, or "
                         "ROS_PACKAGE_PATH); repeatable")
     r.add_argument("--format", default="urdf,mjcf", help="what to write besides the input's own kind: urdf, mjcf, usd")
-    r.add_argument("--cache-dir", help="cache of decompositions by mesh content and options (default "
-                                       "~/.cache/meshlab-acd/hulls)")
-    r.add_argument("--no-cache", dest="cache", action="store_false", help="decompose every mesh again")
     r.add_argument("--resolve-paths", action="store_true", help="name kept meshes (visuals) by absolute paths "
                    "instead of package:// URIs, for simulators without a ROS package resolver (PyBullet)")
     r.add_argument("--no-progress", dest="progress", action="store_false", help="no progress line")
     add_arguments(r, "tau", "tau_unit", "cut_plane_selection", "max_parts", "merge_parts", "max_hull_vertices",
                   "engine", "preprocessing", "wrap_alpha", "wrap_offset", "time_limit", "hole_handling", "hole_order",
                   "on_self_intersection", "threads")
+    for s in (b, r):   # one cache for both: a robot's meshes and a batch's are decomposed once
+        s.add_argument("--cache-dir", help="cache of decompositions by mesh content and options (default "
+                                           "~/.cache/meshlab-acd/hulls)")
+        s.add_argument("--no-cache", dest="cache", action="store_false", help="decompose every mesh again")
     for s in (d, b):
         s.add_argument("--scale", type=float, default=1.0, help="metres per model unit (URDF, MJCF)")
         s.add_argument("--density", type=float, default=1000.0, help="kg/m^3, for the mass and inertia")

@@ -22,10 +22,11 @@ from . import options
 
 MESH_EXTENSIONS = {".obj", ".ply", ".stl", ".off", ".3ds", ".dae", ".wrl", ".gltf", ".glb", ".vmi"}
 
-DEFAULTS = dict(options.DEFAULTS, timeout=1800.0, formats=["obj", "stl"], scale=1.0, density=1000.0, save_tree=False)
+DEFAULTS = dict(options.DEFAULTS, timeout=1800.0, formats=["obj", "stl"], scale=1.0, density=1000.0, save_tree=False,
+                cache=True, cache_dir=None)
 
 # The options that change a mesh's outputs (a rerun with other values redoes the mesh).
-# threads is not one of them: the parts are the same for any count.
+# threads is not one of them (the parts are the same for any count), nor is the cache.
 _OUTPUT_KEYS = ("tau", "tau_unit", "cut_plane_selection", "max_parts", "merge_parts", "max_hull_vertices", "engine",
                 "preprocessing",
                 "wrap_alpha", "wrap_offset", "time_limit", "hole_handling", "hole_order", "on_self_intersection",
@@ -33,20 +34,20 @@ _OUTPUT_KEYS = ("tau", "tau_unit", "cut_plane_selection", "max_parts", "merge_pa
 
 
 SUMMARY_FIELDS = ("file", "status", "parts", "max_concavity", "max_concavity_pct", "hull_volume_ratio",
-                  "preprocessing", "faces", "time", "worker", "error", "output")
+                  "preprocessing", "faces", "time", "cached", "worker", "error", "output")
 
 
 def options_key(opts):
     return hashlib.sha1(json.dumps({k: opts[k] for k in _OUTPUT_KEYS}, sort_keys=True).encode()).hexdigest()[:12]
 
 
-def find_meshes(in_dir, out_dir=None):
-    """Mesh files under in_dir (recursively, not those under out_dir: a batch's own outputs are not
-    its inputs), sorted, with their output folder names (relative)."""
+def find_meshes(in_dir, *skip):
+    """Mesh files under in_dir (recursively, not those under the `skip` folders: a batch's own outputs and
+    its cache are not its inputs), sorted, with their output folder names (relative)."""
     root = pathlib.Path(in_dir)
-    skip = pathlib.Path(out_dir).resolve() if out_dir else None
+    skip = [pathlib.Path(d).resolve() for d in skip if d]
     files = sorted(p for p in root.rglob("*") if p.is_file() and p.suffix.lower() in MESH_EXTENSIONS
-                   and not (skip and p.resolve().is_relative_to(skip)))
+                   and not any(p.resolve().is_relative_to(d) for d in skip))
     stems = {}
     for p in files:
         stems.setdefault(p.relative_to(root).with_suffix(""), []).append(p)
@@ -61,30 +62,39 @@ def find_meshes(in_dir, out_dir=None):
 
 # ---- one mesh, in a child process ------------------------------------------------------------
 def decompose_file(src, out_dir, opts):
-    """Decompose one mesh file and export it to out_dir; returns the summary record (raises on failure)."""
+    """Decompose one mesh file and export it to out_dir; returns the summary record (raises on failure).
+    The decomposition comes from the shared cache (hull_cache) when the same bytes were decomposed under
+    the same options before, by a batch or a robot; it is stored there otherwise."""
     import numpy as np
     import pymeshlab
-    from . import decompose, load
+    from . import load
     from .export import merged_layers, export_decomposition, mass_properties
+    from .hull_cache import default_cache, entry_layers, hull_mesh
 
     load()
     t0 = time.perf_counter()
-    params = dict(tau=opts["tau"], tau_unit=opts["tau_unit"], cut_plane_selection=opts["cut_plane_selection"],
-                  max_parts=opts["max_parts"], merge_parts=opts["merge_parts"], output_hulls=True,
-                  max_hull_vertices=opts["max_hull_vertices"], engine=opts["engine"], time_limit=opts["time_limit"],
-                  wrap_offset=opts["wrap_offset"], hole_handling=opts["hole_handling"], hole_order=opts["hole_order"],
-                  on_self_intersection=opts["on_self_intersection"], threads=opts["threads"])
-
     # The filter prepares the mesh by the core's one policy (preprocessing auto: as given, welded or
     # wrapped, and a solid that crosses itself wrapped when its parts as given fall short of tau).
-    ms = pymeshlab.MeshSet()
-    ms.load_new_mesh(str(src))
-    source = ms.current_mesh_id()
-    tree = pathlib.Path(out_dir) / ".tree.json"
-    res, ids = decompose(ms, preprocessing=opts["preprocessing"], wrap_alpha=opts["wrap_alpha"], **params,
-                         **({"tree_file": str(tree)} if opts["save_tree"] else {"with_tree": False}))
-    hulls = [i for i in ids if ms.mesh(i).label().startswith("acd_hull_")]
-    parts = [i for i in ids if i not in hulls]
+    filter_opts = {k: opts[k] for k in options.DEFAULTS if k != "threads"}
+    cache_dir = (pathlib.Path(opts["cache_dir"]) if opts["cache_dir"] else default_cache()) if opts["cache"] else None
+    entry, res, cached, _ = hull_mesh(src, filter_opts, cache_dir, opts["threads"])
+    try:
+        ms = pymeshlab.MeshSet()
+        ms.load_new_mesh(str(src))
+        if ms.mesh_number() > 1:   # as the decomposition saw it
+            ms.generate_by_merging_visible_meshes()
+        source = ms.current_mesh_id()
+        layers = entry_layers(entry, res)
+        ids = []
+        for label, mesh in layers[0] + layers[1]:
+            ms.add_mesh(mesh, mesh_name=label)
+            ids.append(ms.current_mesh_id())
+        if opts["save_tree"]:   # for coarser levels later
+            shutil.copyfile(entry / "tree.json", pathlib.Path(out_dir) / "tree.json")
+    finally:
+        if cache_dir is None:
+            shutil.rmtree(entry, ignore_errors=True)
+    parts, hulls = ids[:len(layers[0])], ids[len(layers[0]):]
     vol = mass_properties(*merged_layers(ms, parts))[0]      # the solid decomposed (the wrap, if wrapped)
     hull_vol = sum(mass_properties(ms.mesh(i).vertex_matrix(), ms.mesh(i).face_matrix())[0] for i in hulls)
     wrap = f"alpha_wrap {res['wrap_alpha_used']:.3g}%" + (
@@ -92,8 +102,6 @@ def decompose_file(src, out_dir, opts):
     pre = ("none", f"welded {res['welded_vertices']} vertices", wrap)[res["preprocessing_done"]]
     note = ("wrapped: as given, it intersects itself and its parts fell short of tau or a cut opened a part"
             if res["self_crossing_wrapped"] else _not_as_given(res))
-    if opts["save_tree"]:   # for coarser levels later
-        tree.rename(pathlib.Path(out_dir) / "tree.json")
     written = export_decomposition(ms, source, parts, hulls, out_dir, name=pathlib.Path(src).stem,
                                    formats=tuple(opts["formats"]), scale=opts["scale"], density=opts["density"])
     m = ms.mesh(source)
@@ -107,7 +115,7 @@ def decompose_file(src, out_dir, opts):
                worker=f"{socket.gethostname()}:{os.getpid()}", max_parts_reached=res["max_parts_reached"],
                time_limit_reached=res.get("time_limit_reached", False), engine=opts["engine"],
                hulls_reduced=res["hulls_reduced"], hull_reach=res["hull_reach"],
-               collision_hull_distance=res["collision_hull_distance"])
+               collision_hull_distance=res["collision_hull_distance"], cached=cached)
     (pathlib.Path(out_dir) / "summary.json").write_text(json.dumps(rec, indent=1, default=float))
     return rec
 
@@ -232,6 +240,7 @@ def run_batch(in_dir, out_dir, workers=1, ray_address=None, ray_runtime_env=None
     """Decompose every mesh under in_dir into out_dir/<name>/; returns the list of summary records
     (also written to out_dir/summary.csv and summary.json)."""
     from concurrent.futures import ThreadPoolExecutor, as_completed
+    from .hull_cache import default_cache
     opts = dict(DEFAULTS)
     unknown = set(options) - set(opts)
     if unknown:
@@ -243,7 +252,7 @@ def run_batch(in_dir, out_dir, workers=1, ray_address=None, ray_runtime_env=None
         raise ValueError(f"tau must be positive (got {opts['tau']})")
     out_root = pathlib.Path(out_dir)
     out_root.mkdir(parents=True, exist_ok=True)
-    jobs = find_meshes(in_dir, out_root)
+    jobs = find_meshes(in_dir, out_root, opts["cache"] and (opts["cache_dir"] or default_cache()))
     if not jobs:
         raise ValueError(f"no mesh files under {in_dir} (looked for {', '.join(sorted(MESH_EXTENSIONS))})")
     records = {}

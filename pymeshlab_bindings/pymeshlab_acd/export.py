@@ -6,6 +6,7 @@ Mass properties come from the parts (closed shells that partition the solid, so 
 applies), not from the overlapping hulls: simulators would otherwise count the overlaps twice.
 """
 import pathlib
+import re
 import xml.etree.ElementTree as ET
 
 import numpy as np
@@ -165,7 +166,11 @@ def _mlp(body):
         rel = f"parts/{m.label()}.ply"
         proj.save_current_mesh(str(out / rel), save_vertex_color=True)
         rels.append(rel)
-    proj.save_project(str(out / f"{name}.mlp"))   # MeshLab stores the layers' paths relative to it
+    mlp = out / f"{name}.mlp"
+    proj.save_project(str(mlp))   # MeshLab stores the layers' paths relative to it
+    # Qt writes a tag's attributes in its per-process hash order: sorted, the same project is the same bytes.
+    mlp.write_text(re.sub(r'<(\w+)((?:\s+[\w:]+="[^"]*")+)(\s*/?)>', lambda m: "<" + m[1] + "".join(
+        " " + a for a in sorted(re.findall(r'[\w:]+="[^"]*"', m[2]))) + m[3] + ">", mlp.read_text()))
     body.parts = rels
     return [f"{name}.mlp"]
 

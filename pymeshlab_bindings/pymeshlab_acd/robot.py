@@ -9,28 +9,17 @@ Each distinct (mesh content, options) is decomposed once: a content-addressed ca
 and of the options) serves a re-run, another robot sharing the mesh, or a batch.
 """
 import copy
-import functools
-import hashlib
 import json
 import os
 import pathlib
 import shutil
-import tempfile
 import time
 import xml.etree.ElementTree as ET
 
 import numpy as np
 
 from . import options
-from .export import write_obj_objects
-
-_KEY_VERSION = 1   # bump when what a cache entry holds changes
-
-
-def default_cache():
-    root = os.environ.get("ACD_CACHE") or os.path.join(
-        os.environ.get("XDG_CACHE_HOME", os.path.expanduser("~/.cache")), "meshlab-acd")
-    return pathlib.Path(root) / "hulls"
+from .hull_cache import default_cache, hull_mesh, read_objects
 
 
 # ---- mesh paths ---------------------------------------------------------------------------------
@@ -60,89 +49,6 @@ def _package_dir(name, base_dir, packages):
         if root and (pathlib.Path(root) / name).is_dir():
             return pathlib.Path(root) / name
     raise FileNotFoundError(f"package '{name}' not found above {base_dir}: give --package {name}=DIR")
-
-
-# ---- one mesh, decomposed once per content and options --------------------------------------------
-@functools.lru_cache(maxsize=None)
-def _plugin_digest():
-    """The plugin binary's hash: another build may cut differently, so it is part of every key."""
-    from . import plugin_path
-    return hashlib.sha256(pathlib.Path(plugin_path()).read_bytes()).hexdigest()
-
-
-def mesh_key(path, opts):
-    """The cache key of a mesh file under options: its bytes, the options and the plugin build."""
-    h = hashlib.sha256()
-    h.update(pathlib.Path(path).read_bytes())
-    h.update(_plugin_digest().encode())
-    h.update(json.dumps({k: opts[k] for k in sorted(opts)}, sort_keys=True, default=str).encode())
-    h.update(f"v{_KEY_VERSION}".encode())
-    return h.hexdigest()[:24]
-
-
-def hull_mesh(path, opts, cache_dir=None, threads=0):
-    """The decomposition of the mesh file at `path` under `opts` (the filter's options), as a folder of
-    files: hull_<k>.obj (one object each), parts.obj (part k in object k) and result.json (the filter's
-    numbers and each hull's report). Returns (folder, result, cached, key). The folder is `cache_dir`'s entry
-    for the same bytes and options when there is one; otherwise the mesh is decomposed and the entry
-    stored (without a cache_dir, in a temporary folder the caller removes). `threads` is not part of the
-    key: the parts are the same for any count."""
-    key = mesh_key(path, opts)
-    entry = pathlib.Path(cache_dir) / key if cache_dir else None
-    if entry and (entry / "result.json").exists():
-        return entry, json.loads((entry / "result.json").read_text()), True, key
-    out = _decompose_mesh(path, dict(opts, threads=threads))
-    parent = entry.parent if entry else pathlib.Path(tempfile.gettempdir())
-    parent.mkdir(parents=True, exist_ok=True)
-    tmp = pathlib.Path(tempfile.mkdtemp(dir=parent, prefix=".acd-"))
-    for k, h in enumerate(out["hulls"]):
-        write_obj_objects(tmp / f"hull_{k}.obj", [h], "hull")   # one object per file (PyBullet)
-    write_obj_objects(tmp / "parts.obj", out["parts"], "part")
-    (tmp / "result.json").write_text(json.dumps(out["result"], indent=1, default=float))
-    if not entry:
-        return tmp, out["result"], False, key
-    try:
-        tmp.rename(entry)            # atomic: a reader sees a whole entry or none
-    except OSError:                  # another process stored it first
-        shutil.rmtree(tmp, ignore_errors=True)
-    return entry, out["result"], False, key
-
-
-def _decompose_mesh(path, opts):
-    import pymeshlab
-    from . import decompose, load
-    load()
-    ms = pymeshlab.MeshSet()
-    ms.load_new_mesh(str(path))
-    if ms.mesh_number() > 1:   # a file of several meshes (COLLADA scenes): one mesh
-        ms.generate_by_merging_visible_meshes()
-    t0 = time.perf_counter()
-    res, ids = decompose(ms, with_tree=True, output_hulls=True, **opts)
-    tree = res.pop("tree")
-    hulls, parts = [], []
-    for i in ids:
-        m = ms.mesh(i)
-        (hulls if m.label().startswith("acd_hull_") else parts).append((m.vertex_matrix(), m.face_matrix()))
-    res.update(seconds=time.perf_counter() - t0, collision=tree.get("collision", {}))
-    return dict(hulls=hulls, parts=parts, result=res)
-
-
-def _read_objects(path):
-    """(V, F) per object of an OBJ written by write_obj_objects."""
-    out, V, F, base = [], [], [], 1
-    for line in pathlib.Path(path).read_text().splitlines():
-        if line.startswith("o "):
-            if V:
-                out.append((np.array(V, float), np.array(F, np.int64) - base))
-                base += len(V)
-            V, F = [], []
-        elif line.startswith("v "):
-            V.append([float(x) for x in line.split()[1:4]])
-        elif line.startswith("f "):
-            F.append([int(x.split("/")[0]) for x in line.split()[1:4]])
-    if V:
-        out.append((np.array(V, float), np.array(F, np.int64) - base))
-    return out
 
 
 # ---- the robot --------------------------------------------------------------------------------
@@ -446,7 +352,7 @@ def _link_hulls(robot, run):
                     continue
                 T = c.origin if c.origin is not None else np.eye(4)
                 s = np.ones(3) * (m.scale if m.scale is not None else 1.0)
-                for V, F in _read_objects(run["out"] / m.filename):
+                for V, F in read_objects(run["out"] / m.filename):
                     by_link.setdefault(name, []).append(((V * s) @ T[:3, :3].T + T[:3, 3], F))
         for name in sorted(by_link):
             yield name, model.get_transform(name, model.base_link), by_link[name]

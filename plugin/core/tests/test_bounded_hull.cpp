@@ -34,6 +34,41 @@ TEST_CASE("a hull within the budget comes back exact")
 	CHECK_NEAR(b.extent, std::sqrt(29.0), 1e-12);
 }
 
+TEST_CASE("near-duplicate corners are welded when a budget is set, and the hull still holds them")
+{
+	// A box whose corners each carry a twin 1e-9 away, skewed so that the hull keeps sliver facets
+	// between twins: an engine's cooking would merge the twins and count those facets its own way.
+	std::vector<Vec3> pts = shapes::box(Vec3(0, 0, 0), Vec3(2, 3, 4)).V;
+	for (size_t i = 0, n = pts.size(); i < n; ++i) pts.push_back(pts[i] + 1e-9 * Vec3(1, 0.7, 0.3 * i));
+	const ConvexHull h(pts);
+	CHECK(h.points.size() > 8);
+	const BoundedHull none = bounded_hull(h, engine(Engine::None).budget);
+	CHECK(none.mesh.V.size() == h.points.size());   // no budget: the exact hull, untouched
+	const BoundedHull b = bounded_hull(h, engine(Engine::PhysX).budget);
+	CHECK_FALSE(b.reduced);
+	CHECK(b.mesh.V.size() == 8);
+	for (size_t i = 0; i < b.mesh.V.size(); ++i)
+		for (size_t j = i + 1; j < b.mesh.V.size(); ++j) CHECK((b.mesh.V[i] - b.mesh.V[j]).norm() > 1.0);
+	CHECK(outside(pts, b.mesh) <= 1e-12);
+	CHECK(b.reach > 0);
+	CHECK(b.reach < 1e-7);
+}
+
+TEST_CASE("a plate thinner than the weld keeps its exact hull under a budget")
+{
+	for (double thick : {1e-9, 2e-7}) {   // flattened by the weld; kept 3-D but held only by scaling far out
+		CAPTURE(thick);
+		std::vector<Vec3> pts = shapes::box(Vec3(0, 0, 0), Vec3(2, 3, thick)).V;
+		for (size_t i = 0, n = pts.size(); i < n; ++i) pts.push_back(pts[i] + Vec3(0.3e-6 * (i % 3), 0, 0));
+		const ConvexHull  h(pts);
+		const BoundedHull b = bounded_hull(h, engine(Engine::PhysX).budget);
+		CHECK(b.within_budget);
+		CHECK(outside(pts, b.mesh) <= 1e-12);
+		CHECK(b.reach <= 1e-5);
+		for (const Vec3& v : b.mesh.V) CHECK(v.norm() < 4.0);
+	}
+}
+
 TEST_CASE("a reduced hull meets each engine's budget and still contains the exact hull")
 {
 	const std::vector<Vec3> sphere = shapes::sphere(4, 1.0).V;   // 2562 hull vertices

@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <map>
+#include <optional>
 #include <set>
 
 namespace acd {
@@ -136,7 +137,7 @@ BoundedHull result(const ConvexHull& h, const ConvexHull& exact, bool reduced, c
 	std::tie(b.vertices, b.polygons, b.triangles, b.polygon_vertices) = std::tie(c.vertices, c.polygons, c.triangles, c.polygon_vertices);
 	b.reduced       = reduced;
 	b.within_budget = fits(c, budget);
-	if (reduced)
+	if (&h != &exact)   // any other hull may reach beyond the exact one
 		for (const Vec3& v : b.mesh.V) {
 			double out = -1;
 			for (const Plane& f : exact.facet_plane) out = std::max(out, f.eval(v));
@@ -209,11 +210,29 @@ ConvexHull hold(ConvexHull h, const std::vector<Vec3>& P, const Vec3& c)
 	return h;
 }
 
+// Welded at `tol`, then held around P; none when the weld leaves no volume (a part thinner than `tol`).
+std::optional<ConvexHull> weld_and_hold(const ConvexHull& h, const std::vector<Vec3>& P, const Vec3& c, double tol)
+{
+	try {
+		return hold(weld_corners(h, tol), P, c);
+	} catch (const Error&) {
+		return std::nullopt;
+	}
+}
+
+bool holds(const ConvexHull& h, const std::vector<Vec3>& P)
+{
+	return std::all_of(h.facet_plane.begin(), h.facet_plane.end(), [&](const Plane& f) {
+		return std::all_of(P.begin(), P.end(), [&](const Vec3& p) { return f.eval(p) <= 0; });
+	});
+}
+
 } // namespace
 
 BoundedHull bounded_hull(const ConvexHull& exact, const HullBudget& budget, bool measure_inscribed)
 {
-	if (fits(count(exact), budget)) {
+	const bool fits_exact = fits(count(exact), budget);
+	if (fits_exact && !budget.limited()) {
 		BoundedHull b = result(exact, exact, false, budget);
 		if (measure_inscribed) measure(b, exact);
 		return b;
@@ -222,11 +241,23 @@ BoundedHull bounded_hull(const ConvexHull& exact, const HullBudget& budget, bool
 	Vec3                     c      = Vec3::Zero();
 	for (const Vec3& p : P) c += p;
 	c /= (double) P.size();
+	double size = 0;
+	for (const Vec3& p : P) size = std::max(size, (p - c).norm());
+	// An engine cooks its own hull from the vertices and merges near-duplicate corners its own way: the
+	// sliver facets between them count differently there. Welded (and held) first, the count is the same.
+	if (fits_exact) {
+		// A part thinner than the weld (a plate of rounding's thickness) would be flattened, or scaled far
+		// beyond itself to hold its points: its exact hull is kept as it is.
+		const std::optional<ConvexHull> clean = weld_and_hold(exact, P, c, 1e-6 * size);
+		BoundedHull b  = clean ? result(*clean, exact, false, budget) : BoundedHull{};
+		const bool  ok = clean && b.within_budget && b.reach <= 1e-5 * size && holds(*clean, P);
+		if (!ok) b = result(exact, exact, false, budget);
+		if (measure_inscribed) measure(b, ok ? *clean : exact);
+		return b;
+	}
 	const std::vector<Plane> facets = sorted_planes(exact, c);
 	std::vector<Plane>       kept   = enclosing_tetrahedron(P, c);
 	ConvexHull               best   = intersect(kept, c);
-	double                   size   = 0;
-	for (const Vec3& p : P) size = std::max(size, (p - c).norm());
 	// Each vertex's worst facet, remembered: a new plane changes only a few vertices.
 	std::map<std::array<double, 3>, std::pair<double, int>> worst;
 	for (size_t step = 0; step < facets.size(); ++step) {
@@ -245,8 +276,9 @@ BoundedHull bounded_hull(const ConvexHull& exact, const HullBudget& budget, bool
 		if (!fits(count(next), budget)) break;
 		best = std::move(next);
 	}
-	const ConvexHull held = hold(weld_corners(best, 1e-6 * size), P, c);
-	BoundedHull      b    = result(held, exact, true, budget);
+	std::optional<ConvexHull> welded = weld_and_hold(best, P, c, 1e-6 * size);
+	const ConvexHull          held   = welded ? std::move(*welded) : hold(std::move(best), P, c);
+	BoundedHull               b      = result(held, exact, true, budget);
 	if (measure_inscribed) measure(b, held);
 	return b;
 }

@@ -46,7 +46,8 @@ struct BoundedHull
 	double  extent           = 0;        // largest distance between two vertices (measured when asked)
 };
 
-// `exact` itself when it meets the budget; otherwise the intersection of as many of its facet planes (and
+// `exact` itself when no budget is set; with a budget, `exact` with its near-duplicate corners welded (held
+// around every point) when that meets the budget; otherwise the intersection of as many of its facet planes (and
 // at first four support planes) as the budget allows, each added where the intersection reaches farthest
 // beyond the exact hull. Deterministic: the same hull in every run and on any thread count.
 BoundedHull bounded_hull(const ConvexHull& exact, const HullBudget& budget, bool measure_inscribed = false);
