@@ -35,7 +35,7 @@ def run(p, inp, sel, tau, merge, timeout, wrap=()):
     with tempfile.TemporaryDirectory() as tmp:
         out = pathlib.Path(tmp) / "o"
         opts = dict(batch.DEFAULTS, tau=tau, cut_plane_selection=sel, merge_parts=merge, max_hull_vertices=0,
-                    formats=["obj"], timeout=timeout)
+                    formats=["obj"], timeout=timeout, cache=False)   # timed: decomposed every time
         if wrap:
             opts.update(wrap_alpha=float(wrap[0]), wrap_offset=float(wrap[1]))
         rec = batch.run_child(str(p), str(out), opts)

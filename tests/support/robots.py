@@ -102,9 +102,11 @@ def sample(files, meshes, n):
 
 
 # ---- ours, through the batch's child process (auto preprocessing), then the certificate ---------
-def run_ours(src, out_dir, timeout):
+def run_ours(src, out_dir, timeout, cache=False):
+    """`cache`: read the decomposition from the shared cache when there (tests); benchmarks time a fresh one."""
     from pymeshlab_acd import batch
-    opts = dict(batch.DEFAULTS, max_hull_vertices=0, formats=["obj"], timeout=timeout)   # the defaults' tau and cuts
+    opts = dict(batch.DEFAULTS, max_hull_vertices=0, formats=["obj"], timeout=timeout,   # the defaults' tau and cuts
+                cache=cache)
     t0 = time.perf_counter()
     rec = batch.run_child(src, out_dir, opts)
     rec["wall"] = time.perf_counter() - t0
