@@ -192,16 +192,30 @@ ConvexHull weld_corners(const ConvexHull& h, double tol)
 	return ConvexHull(kept);
 }
 
+// How far the points of P stand outside the hull's triangles, as a share of each triangle plane's distance
+// from c (<= 0: all inside). Each triangle's own plane, as an engine or Qhull sees the hull: a merged
+// facet's fitted plane can pass a few rounding steps beside its triangles.
+double outside_share(const ConvexHull& h, const std::vector<Vec3>& P, const Vec3& c)
+{
+	const TriMesh m     = h.canonical_mesh();
+	double        share = 0;
+	for (const Tri& t : m.F) {
+		const Vec3 n = (m.V[t[1]] - m.V[t[0]]).cross(m.V[t[2]] - m.V[t[0]]).normalized();
+		if (!n.allFinite()) continue;
+		const double d    = std::max({n.dot(m.V[t[0]]), n.dot(m.V[t[1]]), n.dot(m.V[t[2]])});
+		const double room = d - n.dot(c);
+		if (!(room > 0)) continue;
+		for (const Vec3& p : P) share = std::max(share, (n.dot(p) - d) / room);
+	}
+	return share;
+}
+
 // The vertices solved from the planes carry rounding: a point of P may lie a few ulps outside. Scaled
 // about c just enough that every point of P is inside (a change of the order of that rounding).
 ConvexHull hold(ConvexHull h, const std::vector<Vec3>& P, const Vec3& c)
 {
 	for (int round = 0; round < 3; ++round) {
-		double grow = 0;
-		for (const Plane& f : h.facet_plane) {
-			const double room = f.d - f.n.dot(c);
-			for (const Vec3& p : P) grow = std::max(grow, f.eval(p) / room);
-		}
+		const double grow = outside_share(h, P, c);
 		if (grow <= 0) break;
 		std::vector<Vec3> V = h.canonical_mesh().V;   // sorted, as in intersect()
 		for (Vec3& v : V) v = c + (v - c) * (1 + 2 * grow + 1e-15);
@@ -218,13 +232,6 @@ std::optional<ConvexHull> weld_and_hold(const ConvexHull& h, const std::vector<V
 	} catch (const Error&) {
 		return std::nullopt;
 	}
-}
-
-bool holds(const ConvexHull& h, const std::vector<Vec3>& P)
-{
-	return std::all_of(h.facet_plane.begin(), h.facet_plane.end(), [&](const Plane& f) {
-		return std::all_of(P.begin(), P.end(), [&](const Vec3& p) { return f.eval(p) <= 0; });
-	});
 }
 
 } // namespace
@@ -250,7 +257,7 @@ BoundedHull bounded_hull(const ConvexHull& exact, const HullBudget& budget, bool
 		// beyond itself to hold its points: its exact hull is kept as it is.
 		const std::optional<ConvexHull> clean = weld_and_hold(exact, P, c, 1e-6 * size);
 		BoundedHull b  = clean ? result(*clean, exact, false, budget) : BoundedHull{};
-		const bool  ok = clean && b.within_budget && b.reach <= 1e-5 * size && holds(*clean, P);
+		const bool  ok = clean && b.within_budget && b.reach <= 1e-5 * size && outside_share(*clean, P, c) <= 0;
 		if (!ok) b = result(exact, exact, false, budget);
 		if (measure_inscribed) measure(b, ok ? *clean : exact);
 		return b;
