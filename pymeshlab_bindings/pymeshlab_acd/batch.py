@@ -69,14 +69,14 @@ def decompose_file(src, out_dir, opts):
     import pymeshlab
     from . import load
     from .export import merged_layers, export_decomposition, mass_properties
-    from .hull_cache import default_cache, entry_layers, hull_mesh
+    from .hull_cache import cache_folder, entry_layers, hull_mesh
 
     load()
     t0 = time.perf_counter()
     # The filter prepares the mesh by the core's one policy (preprocessing auto: as given, welded or
     # wrapped, and a solid that crosses itself wrapped when its parts as given fall short of tau).
     filter_opts = {k: opts[k] for k in options.DEFAULTS if k != "threads"}
-    cache_dir = (pathlib.Path(opts["cache_dir"]) if opts["cache_dir"] else default_cache()) if opts["cache"] else None
+    cache_dir = cache_folder(opts["cache"], opts["cache_dir"])
     entry, res, cached, _ = hull_mesh(src, filter_opts, cache_dir, opts["threads"])
     try:
         ms = pymeshlab.MeshSet()
@@ -240,7 +240,7 @@ def run_batch(in_dir, out_dir, workers=1, ray_address=None, ray_runtime_env=None
     """Decompose every mesh under in_dir into out_dir/<name>/; returns the list of summary records
     (also written to out_dir/summary.csv and summary.json)."""
     from concurrent.futures import ThreadPoolExecutor, as_completed
-    from .hull_cache import default_cache
+    from .hull_cache import cache_folder
     opts = dict(DEFAULTS)
     unknown = set(options) - set(opts)
     if unknown:
@@ -252,7 +252,7 @@ def run_batch(in_dir, out_dir, workers=1, ray_address=None, ray_runtime_env=None
         raise ValueError(f"tau must be positive (got {opts['tau']})")
     out_root = pathlib.Path(out_dir)
     out_root.mkdir(parents=True, exist_ok=True)
-    jobs = find_meshes(in_dir, out_root, opts["cache"] and (opts["cache_dir"] or default_cache()))
+    jobs = find_meshes(in_dir, out_root, cache_folder(opts["cache"], opts["cache_dir"]))
     if not jobs:
         raise ValueError(f"no mesh files under {in_dir} (looked for {', '.join(sorted(MESH_EXTENSIONS))})")
     records = {}

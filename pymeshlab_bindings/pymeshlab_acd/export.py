@@ -153,6 +153,17 @@ def _mjcf(name, coll, visual, mass, com, I, scale):
     return ET.tostring(root, encoding="unicode") + "\n"
 
 
+_ATTRIBUTE = r'[\w:]+="[^"]*"'
+
+
+def _sorted_attributes(xml):
+    """Every tag's attributes in name order. Qt writes them in its per-process hash order, so the same
+    project would otherwise be different bytes from one run to the next."""
+    def tag(m):
+        return "<" + m[1] + "".join(" " + a for a in sorted(re.findall(_ATTRIBUTE, m[2]))) + m[3] + ">"
+    return re.sub(r"<(\w+)((?:\s+" + _ATTRIBUTE + r")+)(\s*/?)>", tag, xml)
+
+
 def _mlp(body):
     """A MeshLab project with one layer per part (coloured PLY), written by MeshLab's own project
     writer from a MeshSet that holds only the parts."""
@@ -168,9 +179,7 @@ def _mlp(body):
         rels.append(rel)
     mlp = out / f"{name}.mlp"
     proj.save_project(str(mlp))   # MeshLab stores the layers' paths relative to it
-    # Qt writes a tag's attributes in its per-process hash order: sorted, the same project is the same bytes.
-    mlp.write_text(re.sub(r'<(\w+)((?:\s+[\w:]+="[^"]*")+)(\s*/?)>', lambda m: "<" + m[1] + "".join(
-        " " + a for a in sorted(re.findall(r'[\w:]+="[^"]*"', m[2]))) + m[3] + ">", mlp.read_text()))
+    mlp.write_text(_sorted_attributes(mlp.read_text()))
     body.parts = rels
     return [f"{name}.mlp"]
 

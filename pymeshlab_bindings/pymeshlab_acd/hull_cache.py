@@ -30,6 +30,11 @@ def default_cache():
     return pathlib.Path(root) / "hulls"
 
 
+def cache_folder(cache=True, cache_dir=None):
+    """The cache a run uses: `cache_dir`, else default_cache(); None when `cache` is off."""
+    return (pathlib.Path(cache_dir) if cache_dir else default_cache()) if cache else None
+
+
 @functools.lru_cache(maxsize=None)
 def _plugin_digest():
     """The plugin binary's hash: another build may cut differently, so it is part of every key."""

@@ -19,7 +19,7 @@ import xml.etree.ElementTree as ET
 import numpy as np
 
 from . import options
-from .hull_cache import default_cache, hull_mesh, read_objects
+from .hull_cache import cache_folder, hull_mesh, read_objects
 
 
 # ---- mesh paths ---------------------------------------------------------------------------------
@@ -85,9 +85,8 @@ def decompose_robot(description, out_dir, packages=None, engine="none", formats=
     robot = Robot(description, packages)
     opts = dict(options.DEFAULTS, **filter_options, engine=engine)
     threads = opts.pop("threads")
-    cdir = (pathlib.Path(cache_dir) if cache_dir else default_cache()) if cache else None
-    run = dict(opts=opts, threads=threads, cache_dir=cdir, out=out, progress=progress or (lambda s: None),
-               resolve_paths=resolve_paths)
+    run = dict(opts=opts, threads=threads, cache_dir=cache_folder(cache, cache_dir), out=out,
+               progress=progress or (lambda s: None), resolve_paths=resolve_paths)
     if robot.kind == "urdf":
         written = _rewrite_urdf(robot, run)
     else:

@@ -211,21 +211,26 @@ double outside_share(const ConvexHull& h, const std::vector<Vec3>& P, const Vec3
 }
 
 // The vertices solved from the planes carry rounding: a point of P may lie a few ulps outside. Scaled
-// about c just enough that every point of P is inside (a change of the order of that rounding).
-ConvexHull hold(ConvexHull h, const std::vector<Vec3>& P, const Vec3& c)
+// about c just enough that every point of P is inside (a change of the order of that rounding); `holds`
+// says whether three rounds of it got there.
+struct Held
 {
-	for (int round = 0; round < 3; ++round) {
+	ConvexHull hull;
+	bool       holds;
+};
+Held hold(ConvexHull h, const std::vector<Vec3>& P, const Vec3& c)
+{
+	for (int round = 0;; ++round) {
 		const double grow = outside_share(h, P, c);
-		if (grow <= 0) break;
+		if (grow <= 0 || round == 3) return {std::move(h), grow <= 0};
 		std::vector<Vec3> V = h.canonical_mesh().V;   // sorted, as in intersect()
 		for (Vec3& v : V) v = c + (v - c) * (1 + 2 * grow + 1e-15);
 		h = ConvexHull(V);
 	}
-	return h;
 }
 
 // Welded at `tol`, then held around P; none when the weld leaves no volume (a part thinner than `tol`).
-std::optional<ConvexHull> weld_and_hold(const ConvexHull& h, const std::vector<Vec3>& P, const Vec3& c, double tol)
+std::optional<Held> weld_and_hold(const ConvexHull& h, const std::vector<Vec3>& P, const Vec3& c, double tol)
 {
 	try {
 		return hold(weld_corners(h, tol), P, c);
@@ -255,11 +260,11 @@ BoundedHull bounded_hull(const ConvexHull& exact, const HullBudget& budget, bool
 	if (fits_exact) {
 		// A part thinner than the weld (a plate of rounding's thickness) would be flattened, or scaled far
 		// beyond itself to hold its points: its exact hull is kept as it is.
-		const std::optional<ConvexHull> clean = weld_and_hold(exact, P, c, 1e-6 * size);
-		BoundedHull b  = clean ? result(*clean, exact, false, budget) : BoundedHull{};
-		const bool  ok = clean && b.within_budget && b.reach <= 1e-5 * size && outside_share(*clean, P, c) <= 0;
+		const std::optional<Held> clean = weld_and_hold(exact, P, c, 1e-6 * size);
+		BoundedHull b  = clean ? result(clean->hull, exact, false, budget) : BoundedHull{};
+		const bool  ok = clean && clean->holds && b.within_budget && b.reach <= 1e-5 * size;
 		if (!ok) b = result(exact, exact, false, budget);
-		if (measure_inscribed) measure(b, ok ? *clean : exact);
+		if (measure_inscribed) measure(b, ok ? clean->hull : exact);
 		return b;
 	}
 	const std::vector<Plane> facets = sorted_planes(exact, c);
@@ -283,9 +288,9 @@ BoundedHull bounded_hull(const ConvexHull& exact, const HullBudget& budget, bool
 		if (!fits(count(next), budget)) break;
 		best = std::move(next);
 	}
-	std::optional<ConvexHull> welded = weld_and_hold(best, P, c, 1e-6 * size);
-	const ConvexHull          held   = welded ? std::move(*welded) : hold(std::move(best), P, c);
-	BoundedHull               b      = result(held, exact, true, budget);
+	std::optional<Held> welded = weld_and_hold(best, P, c, 1e-6 * size);
+	const ConvexHull    held   = welded ? std::move(welded->hull) : hold(std::move(best), P, c).hull;
+	BoundedHull         b      = result(held, exact, true, budget);
 	if (measure_inscribed) measure(b, held);
 	return b;
 }
