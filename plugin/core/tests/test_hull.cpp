@@ -4,7 +4,9 @@
 #include "shapes.h"
 
 #include <algorithm>
+#include <array>
 #include <random>
+#include <set>
 
 using namespace acd;
 
@@ -32,15 +34,54 @@ TEST_CASE("interior and repeated points do not change the hull")
 	for (size_t i = 0; i < h.points.size(); ++i) CHECK(pts[h.point_source[i]] == h.points[i]);
 }
 
-TEST_CASE("the canonical mesh depends on the points, not their order")
+TEST_CASE("the hull's mesh depends on the points, not their order")
 {
 	std::vector<Vec3> pts = shapes::sphere(2, 1.0).V;
-	const TriMesh     a   = ConvexHull(pts).canonical_mesh();
+	const TriMesh     a   = ConvexHull(pts).mesh();
 	std::shuffle(pts.begin(), pts.end(), std::mt19937(7));
-	const TriMesh b = ConvexHull(pts).canonical_mesh();
+	const TriMesh b = ConvexHull(pts).mesh();
 	CHECK(a.V == b.V);
 	CHECK(a.F == b.F);
 	CHECK_NEAR(signed_volume(a), ConvexHull(pts).volume, 1e-12);
+}
+
+TEST_CASE("the facets depend on the points, not on the order CGAL hands its triangles out")
+{
+	// A box with points along its edges lifted by a few rounding steps: sliver triangles along every edge,
+	// which join a facet by the order of their neighbours. Shuffled input reorders CGAL's triangles.
+	std::mt19937                           rng(3);
+	std::uniform_real_distribution<double> u(-1, 1);
+	std::vector<Vec3>                      pts = shapes::box(Vec3(-1, -1, -1), Vec3(1, 1, 1)).V;
+	for (int e = 0; e < 12; ++e)
+		for (int k = 0; k < 6; ++k) {
+			const int ax = e / 4;
+			Vec3      p;
+			p[ax]            = u(rng);
+			p[(ax + 1) % 3] = (e & 1 ? 1 : -1) * (1 + 1e-13 * std::abs(u(rng)));
+			p[(ax + 2) % 3] = (e & 2 ? 1 : -1) * (1 + 1e-13 * std::abs(u(rng)));
+			pts.push_back(p);
+		}
+	using Corners = std::set<std::array<double, 3>>;
+	auto facets   = [](const ConvexHull& h) {   // each facet as the set of its corners
+		std::set<Corners> out;
+		for (const auto& tris : h.facet_triangles) {
+			Corners c;
+			for (int t : tris)
+				for (int v : h.triangles[t]) c.insert({h.points[v].x(), h.points[v].y(), h.points[v].z()});
+			out.insert(c);
+		}
+		return out;
+	};
+	const ConvexHull first(pts);
+	CHECK(first.facets() == 6);
+	for (int s = 0; s < 10; ++s) {
+		CAPTURE(s);
+		std::shuffle(pts.begin(), pts.end(), std::mt19937(s));
+		const ConvexHull again(pts);
+		CHECK(facets(again) == facets(first));
+		CHECK(again.points == first.points);
+		CHECK(again.triangles == first.triangles);
+	}
 }
 
 TEST_CASE("flat or too few points are refused")

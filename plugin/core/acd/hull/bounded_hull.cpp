@@ -132,7 +132,7 @@ std::vector<Plane> enclosing_tetrahedron(const std::vector<Vec3>& P, const Vec3&
 BoundedHull result(const ConvexHull& h, const ConvexHull& exact, bool reduced, const HullBudget& budget)
 {
 	BoundedHull b;
-	b.mesh                                                        = h.canonical_mesh();
+	b.mesh                                                        = h.mesh();
 	const Counts c                                                = count(h);
 	std::tie(b.vertices, b.polygons, b.triangles, b.polygon_vertices) = std::tie(c.vertices, c.polygons, c.triangles, c.polygon_vertices);
 	b.reduced       = reduced;
@@ -154,8 +154,8 @@ void measure(BoundedHull& b, const ConvexHull& h)
 		for (size_t j = i + 1; j < b.mesh.V.size(); ++j) b.extent = std::max(b.extent, (b.mesh.V[i] - b.mesh.V[j]).norm());
 }
 
-// The exact hull's facet planes, each computed from its corners in sorted order and sorted by value
-// (CGAL's facet and corner order can change between runs), so that every run picks the same planes.
+// The exact hull's facet planes, each computed from its corners in sorted order and sorted by value, so
+// that the planes picked depend on the hull's shape alone.
 std::vector<Plane> sorted_planes(const ConvexHull& h, const Vec3& c)
 {
 	std::vector<Plane> planes;
@@ -187,7 +187,7 @@ std::vector<Plane> sorted_planes(const ConvexHull& h, const Vec3& c)
 ConvexHull weld_corners(const ConvexHull& h, double tol)
 {
 	std::vector<Vec3> kept;
-	for (const Vec3& v : h.canonical_mesh().V)
+	for (const Vec3& v : h.points)
 		if (std::none_of(kept.begin(), kept.end(), [&](const Vec3& k) { return (k - v).norm() <= tol; })) kept.push_back(v);
 	return ConvexHull(kept);
 }
@@ -197,7 +197,7 @@ ConvexHull weld_corners(const ConvexHull& h, double tol)
 // facet's fitted plane can pass a few rounding steps beside its triangles.
 double outside_share(const ConvexHull& h, const std::vector<Vec3>& P, const Vec3& c)
 {
-	const TriMesh m     = h.canonical_mesh();
+	const TriMesh m     = h.mesh();
 	double        share = 0;
 	for (const Tri& t : m.F) {
 		const Vec3 n = (m.V[t[1]] - m.V[t[0]]).cross(m.V[t[2]] - m.V[t[0]]).normalized();
@@ -223,7 +223,7 @@ Held hold(ConvexHull h, const std::vector<Vec3>& P, const Vec3& c)
 	for (int round = 0;; ++round) {
 		const double grow = outside_share(h, P, c);
 		if (grow <= 0 || round == 3) return {std::move(h), grow <= 0};
-		std::vector<Vec3> V = h.canonical_mesh().V;   // sorted, as in intersect()
+		std::vector<Vec3> V = h.points;   // sorted, as in intersect()
 		for (Vec3& v : V) v = c + (v - c) * (1 + 2 * grow + 1e-15);
 		h = ConvexHull(V);
 	}
@@ -239,6 +239,14 @@ std::optional<Held> weld_and_hold(const ConvexHull& h, const std::vector<Vec3>& 
 	}
 }
 
+// A reduced hull as it is handed out: welded and held when that holds, else held as solved.
+Held finish(ConvexHull h, const std::vector<Vec3>& P, const Vec3& c, double size)
+{
+	std::optional<Held> welded = weld_and_hold(h, P, c, 1e-6 * size);
+	if (welded && welded->holds) return std::move(*welded);
+	return hold(std::move(h), P, c);
+}
+
 } // namespace
 
 BoundedHull bounded_hull(const ConvexHull& exact, const HullBudget& budget, bool measure_inscribed)
@@ -249,7 +257,7 @@ BoundedHull bounded_hull(const ConvexHull& exact, const HullBudget& budget, bool
 		if (measure_inscribed) measure(b, exact);
 		return b;
 	}
-	const std::vector<Vec3>  P      = exact.canonical_mesh().V;
+	const std::vector<Vec3>  P      = exact.points;
 	Vec3                     c      = Vec3::Zero();
 	for (const Vec3& p : P) c += p;
 	c /= (double) P.size();
@@ -275,7 +283,7 @@ BoundedHull bounded_hull(const ConvexHull& exact, const HullBudget& budget, bool
 	for (size_t step = 0; step < facets.size(); ++step) {
 		double far = 1e-9 * size;
 		int    pick = -1;
-		for (const Vec3& v : best.canonical_mesh().V) {
+		for (const Vec3& v : best.points) {
 			auto [it, fresh] = worst.try_emplace({v.x(), v.y(), v.z()}, -1e300, -1);
 			if (fresh)
 				for (int f = 0; f < (int) facets.size(); ++f)
@@ -288,10 +296,15 @@ BoundedHull bounded_hull(const ConvexHull& exact, const HullBudget& budget, bool
 		if (!fits(count(next), budget)) break;
 		best = std::move(next);
 	}
-	std::optional<Held> welded = weld_and_hold(best, P, c, 1e-6 * size);
-	const ConvexHull    held   = welded ? std::move(welded->hull) : hold(std::move(best), P, c).hull;
-	BoundedHull         b      = result(held, exact, true, budget);
-	if (measure_inscribed) measure(b, held);
+	// A weld moves corners off their polygons' planes and can split a polygon in two: the planes added
+	// last are given back until the finished hull fits (the first four always do).
+	Held done = finish(std::move(best), P, c, size);
+	while (!fits(count(done.hull), budget) && kept.size() > 4) {
+		kept.pop_back();
+		done = finish(intersect(kept, c), P, c, size);
+	}
+	BoundedHull b = result(done.hull, exact, true, budget);
+	if (measure_inscribed) measure(b, done.hull);
 	return b;
 }
 

@@ -11,8 +11,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstring>
-#include <numeric>
+#include <limits>
 #include <unordered_map>
 
 namespace acd {
@@ -130,29 +131,46 @@ std::vector<int> coplanar_groups(const std::vector<Vec3>& points, const std::vec
 
 } // namespace
 
+// CGAL's hull is read in an order that depends on the points alone: vertices sorted, each triangle from
+// its least vertex, triangles sorted. CGAL hands its faces out in an order that follows allocation (it
+// differs between runs and threads), and the facet grouping below breaks ties by order.
 ConvexHull::ConvexHull(const std::vector<Vec3>& input)
 {
 	std::unordered_map<Point, int, BitsHash> index;   // first input index of each distinct point
 	const SMesh                              sm = cgal_hull(input, index);
-	std::unordered_map<SMesh::Vertex_index, int> vid;
-	for (auto v : sm.vertices()) {
-		vid[v] = (int) points.size();
+	std::vector<SMesh::Vertex_index>         vs(sm.vertices().begin(), sm.vertices().end());
+	std::sort(vs.begin(), vs.end(), [&](SMesh::Vertex_index a, SMesh::Vertex_index b) {
+		return std::make_tuple(sm.point(a).x(), sm.point(a).y(), sm.point(a).z()) <
+		       std::make_tuple(sm.point(b).x(), sm.point(b).y(), sm.point(b).z());
+	});
+	std::vector<int> rank(sm.number_of_vertices());
+	for (SMesh::Vertex_index v : vs) {
+		rank[v.idx()] = (int) points.size();
 		points.push_back(to_vec(sm.point(v)));
 		point_source.push_back(index.at(sm.point(v)));
 	}
-	std::unordered_map<SMesh::Face_index, int> fid;
 	for (auto f : sm.faces()) {
 		Tri t;
 		int k = 0;
-		for (auto v : CGAL::vertices_around_face(sm.halfedge(f), sm)) t[k++] = vid[v];
-		fid[f] = (int) triangles.size();
+		for (auto v : CGAL::vertices_around_face(sm.halfedge(f), sm)) t[k++] = rank[v.idx()];
+		std::rotate(t.begin(), std::min_element(t.begin(), t.end()), t.end());
 		triangles.push_back(t);
 	}
+	std::sort(triangles.begin(), triangles.end());
+	// Each directed edge (a, b) -> its triangle; the neighbour across (a, b) holds (b, a).
+	std::vector<std::pair<uint64_t, int>> edge;
+	edge.reserve(3 * triangles.size());
+	auto key = [](int a, int b) { return (uint64_t) a << 32 | (uint32_t) b; };
+	for (int t = 0; t < (int) triangles.size(); ++t)
+		for (int i = 0; i < 3; ++i) edge.emplace_back(key(triangles[t][i], triangles[t][(i + 1) % 3]), t);
+	std::sort(edge.begin(), edge.end());
 	std::vector<std::vector<std::pair<double, int>>> across(triangles.size());   // (edge length, face)
-	for (auto f : sm.faces())
-		for (auto h : CGAL::halfedges_around_face(sm.halfedge(f), sm))
-			across[fid[f]].emplace_back((to_vec(sm.point(sm.target(h))) - to_vec(sm.point(sm.source(h)))).norm(),
-			                            fid[sm.face(sm.opposite(h))]);
+	for (int t = 0; t < (int) triangles.size(); ++t)
+		for (int i = 0; i < 3; ++i) {
+			const int a = triangles[t][i], b = triangles[t][(i + 1) % 3];
+			const auto it = std::lower_bound(edge.begin(), edge.end(), std::make_pair(key(b, a), -1));
+			across[t].emplace_back((points[b] - points[a]).norm(), it->second);
+		}
 	index_facets(coplanar_groups(points, triangles, across));
 	index_corners();
 	tree_ = std::make_unique<Tree>();
@@ -251,31 +269,6 @@ int ConvexHull::facet_facing(int t, const Vec3& n) const
 TriMesh ConvexHull::mesh() const
 {
 	return TriMesh{points, triangles};
-}
-
-TriMesh ConvexHull::canonical_mesh() const
-{
-	// CGAL's hull keys its border edges by handle addresses, so its own order can differ from run to
-	// run (with threads, allocation differs): a layer, a file or a simplified hull must not.
-	std::vector<int> order(points.size());
-	std::iota(order.begin(), order.end(), 0);
-	std::sort(order.begin(), order.end(), [&](int a, int b) {
-		return std::lexicographical_compare(points[a].data(), points[a].data() + 3, points[b].data(),
-		                                    points[b].data() + 3);
-	});
-	TriMesh          out;
-	std::vector<int> rank(points.size());
-	for (int i = 0; i < (int) order.size(); ++i) {
-		rank[order[i]] = i;
-		out.V.push_back(points[order[i]]);
-	}
-	for (const Tri& t : triangles) {
-		Tri r = {rank[t[0]], rank[t[1]], rank[t[2]]};
-		std::rotate(r.begin(), std::min_element(r.begin(), r.end()), r.end());
-		out.F.push_back(r);
-	}
-	std::sort(out.F.begin(), out.F.end());
-	return out;
 }
 
 } // namespace acd

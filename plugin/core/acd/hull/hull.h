@@ -17,7 +17,9 @@ public:
 	ConvexHull(ConvexHull&&) noexcept;
 	ConvexHull& operator=(ConvexHull&&) noexcept;
 
-	// Hull vertices (positions, and their index in the input point array) and triangles.
+	// Hull vertices (positions, and their index in the input point array) and triangles, in an order that
+	// depends on the points alone (vertices sorted, each triangle from its least corner, triangles sorted):
+	// the same in every run and on any thread, as outputs must be.
 	std::vector<Vec3> points;
 	std::vector<int>  point_source;
 	std::vector<Tri>  triangles;       // outward oriented, indices into `points`
@@ -37,11 +39,8 @@ public:
 	int facet_facing(int t, const Vec3& n) const;
 	// Distance from p to one facet (a planar convex polygon).
 	double distance_to_facet(const Vec3& p, int facet) const;
-	// Hull as a mesh (vertices = hull vertices), in CGAL's order.
+	// Hull as a mesh (vertices = hull vertices).
 	TriMesh mesh() const;
-	// The same in an order that depends on the points alone (sorted vertices and triangles): for
-	// output, which must be the same in every session.
-	TriMesh canonical_mesh() const;
 
 private:
 	void index_facets(const std::vector<int>& group);   // group: per triangle, its coplanar group

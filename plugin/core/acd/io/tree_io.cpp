@@ -54,7 +54,7 @@ json node_json(const Node& n, int id, bool geometry)
 	if (!n.merged.empty()) o["merged"] = n.merged;
 	if (n.part >= 0) o["part"] = n.part;
 	if (geometry && !n.mesh.F.empty()) {
-		o["hull"] = mesh_json(ConvexHull(n.mesh.V).canonical_mesh());
+		o["hull"] = mesh_json(ConvexHull(n.mesh.V).mesh());
 		if (n.leaf() || !n.merged.empty()) o["mesh"] = mesh_json(n.mesh);
 	}
 	return o;
