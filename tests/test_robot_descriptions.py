@@ -195,6 +195,29 @@ def test_the_same_bytes_for_any_thread_count(package, tmp_path):
     assert _same_files(outs[0], outs[1]) and _same_files(outs[0], outs[2])
 
 
+def test_a_reduced_hull_is_the_same_on_any_thread_count_and_within_budget(package, tmp_path):
+    """g1's right knee link at the defaults under physx: one of its hulls is cut down from planes that nearly
+    meet in points, and welding its corners splits polygons. 1 and 2 threads in separate processes give the
+    same hull bytes, and every hull is within PhysX's limits by the independent counts and holds its part."""
+    from support.budgets import outside, read_obj_objects, within
+    mesh = package / "robots" / "g1_description" / "meshes" / "right_knee_link.STL"
+    outs = []
+    for threads in (1, 2):
+        out = tmp_path / f"t{threads}"
+        r = subprocess.run([sys.executable, "-m", "pymeshlab_acd", "decompose", str(mesh), "--out", str(out),
+                            "--no-progress", "--engine", "physx", "--threads", str(threads)],
+                           capture_output=True, text=True)
+        assert r.returncode == 0, r.stderr
+        outs.append(out)
+    assert (outs[0] / "hulls.obj").read_bytes() == (outs[1] / "hulls.obj").read_bytes()
+    hulls, parts = read_obj_objects(outs[0] / "hulls.obj"), read_obj_objects(outs[0] / "parts.obj")
+    size = float(np.ptp(np.vstack([V for V, _ in parts]), axis=0).max())
+    assert len(hulls) == len(parts) > 1
+    for (Vh, Fh), (Vp, _) in zip(hulls, parts):
+        assert within(Vh, Fh, "physx")
+        assert outside(Vp, Vh) <= 1e-9 * size
+
+
 def test_the_command_line_names_what_is_wrong(tmp_path):
     r = subprocess.run([sys.executable, "-m", "pymeshlab_acd", "robot", str(tmp_path / "none.urdf"), "--out",
                         str(tmp_path / "o")], capture_output=True, text=True)
