@@ -7,6 +7,7 @@ The corpus runs at coarse settings (tau 10%, alpha 5% for open meshes, 2 s of cu
 tested here is the rewriting, loading and simulation, not the decomposition's detail), through the shared
 cache; bench/bench_robot_descriptions.py runs it at the defaults."""
 import filecmp
+import json
 import subprocess
 import sys
 import xml.etree.ElementTree as ET
@@ -198,7 +199,8 @@ def test_the_same_bytes_for_any_thread_count(package, tmp_path):
 def test_a_reduced_hull_is_the_same_on_any_thread_count_and_within_budget(package, tmp_path):
     """g1's right knee link at the defaults under physx: one of its hulls is cut down from planes that nearly
     meet in points, and welding its corners splits polygons. 1 and 2 threads in separate processes give the
-    same hull bytes, and every hull is within PhysX's limits by the independent counts and holds its part."""
+    same hull bytes; no hull is over the budget by the package's own count, none by trimesh's, and every
+    hull holds its part."""
     from support.budgets import outside, read_obj_objects, within
     mesh = package / "robots" / "g1_description" / "meshes" / "right_knee_link.STL"
     outs = []
@@ -210,6 +212,7 @@ def test_a_reduced_hull_is_the_same_on_any_thread_count_and_within_budget(packag
         assert r.returncode == 0, r.stderr
         outs.append(out)
     assert (outs[0] / "hulls.obj").read_bytes() == (outs[1] / "hulls.obj").read_bytes()
+    assert json.loads((outs[0] / "summary.json").read_text())["hulls_over_budget"] == 0
     hulls, parts = read_obj_objects(outs[0] / "hulls.obj"), read_obj_objects(outs[0] / "parts.obj")
     size = float(np.ptp(np.vstack([V for V, _ in parts]), axis=0).max())
     assert len(hulls) == len(parts) > 1

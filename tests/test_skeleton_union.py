@@ -59,13 +59,7 @@ def half_ring():
     return extrude(np.r_[np.c_[2.5 * np.cos(th), 2.5 * np.sin(th)], np.c_[1.5 * np.cos(th[::-1]), 1.5 * np.sin(th[::-1])]], 0, 1)
 
 
-RING_AT_HALF = pytest.param(
-    "ring", 0.5, 1, marks=pytest.mark.xfail(strict=True, reason=(
-        "known regression: the ring's hull reaches about 1.5 across its hole, so at tau 0.5 it is no "
-        "longer one part; the skeleton of the arcs it is cut into leaves the ring (72% inside)")))
-
-
-@pytest.mark.parametrize("shape,tau,loops", [("ring", 0.3, 1), RING_AT_HALF, ("C", 1.6, 0)])
+@pytest.mark.parametrize("shape,tau,loops", [("ring", 0.3, 1), ("ring", 0.5, 1), ("C", 1.6, 0)])
 def test_skeleton_refines_bent_parts_and_closes_the_ring(ms, shape, tau, loops):
     # ring at 0.3: cut into arcs, joined around; ring at 0.5 and the C at 1.6: one tau-convex part
     # whose hull axis crosses the hole, so the skeleton splits it across the axis at the bend

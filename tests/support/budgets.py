@@ -10,38 +10,10 @@ LIMITS = {"physx": (255, 255, 0), "physx_gpu": (64, 64, 0), "unity": (0, 0, 255)
 
 
 def counts(V, F):
-    """Distinct vertices, polygons and triangles. Polygons: the larger of two counts of coplanar neighbouring
-    triangles merged, trimesh's (by normals, lenient) and `plane_polygons` (by distance to the plane)."""
+    """Distinct vertices, polygons (coplanar neighbouring triangles merged, by trimesh) and triangles."""
     m = trimesh.Trimesh(np.asarray(V, float), np.asarray(F), process=True)
     in_facets = sum(len(f) for f in m.facets)
-    polygons = max(len(m.facets) + len(m.faces) - in_facets, plane_polygons(m.vertices, m.faces))
-    return len(m.vertices), polygons, len(m.faces)
-
-
-def plane_polygons(V, F):
-    """Polygons of a triangle mesh: two triangles across an edge are one polygon when the far corner of one
-    lies within 1e-9 of the mesh's size from the other's plane (an engine merging less than trimesh)."""
-    V, F = np.asarray(V, float), np.asarray(F)
-    tol = 1e-9 * float(np.ptp(V, axis=0).max())
-    across = {(int(f[i]), int(f[(i + 1) % 3])): t for t, f in enumerate(F) for i in range(3)}
-    root = list(range(len(F)))
-
-    def find(t):
-        while root[t] != t:
-            root[t] = root[root[t]]
-            t = root[t]
-        return t
-
-    for t, f in enumerate(F):
-        n = np.cross(V[f[1]] - V[f[0]], V[f[2]] - V[f[0]])
-        if not np.linalg.norm(n) > 0:
-            continue   # no plane of its own: a neighbour's plane decides
-        n /= np.linalg.norm(n)
-        for i in range(3):
-            g = across.get((int(f[(i + 1) % 3]), int(f[i])))
-            if g is not None and any(abs(n @ (V[v] - V[f[0]])) <= tol for v in F[g] if v not in (f[i], f[(i + 1) % 3])):
-                root[find(t)] = find(g)
-    return sum(1 for t in range(len(F)) if find(t) == t)
+    return len(m.vertices), len(m.facets) + len(m.faces) - in_facets, len(m.faces)
 
 
 def within(V, F, engine):

@@ -180,6 +180,33 @@ bool inside(const TriMesh& m, const Vec3& p)
 	return hits % 2 == 1;
 }
 
+std::vector<double> line_crossings(const TriMesh& m, const Vec3& c, const Vec3& a)
+{
+	constexpr double    border = 1e-9;   // in barycentric coordinates
+	std::vector<double> ts;
+	Eigen::AlignedBox3d box;
+	for (const Tri& t : m.F) {
+		const Vec3 &p = m.V[t[0]], &q = m.V[t[1]], &r = m.V[t[2]];
+		box.extend(p);
+		const Vec3   e1 = q - p, e2 = r - p, h = a.cross(e2);
+		const double det = e1.dot(h);
+		if (std::abs(det) < 1e-300) continue;
+		const Vec3   s = c - p;
+		const double u = s.dot(h) / det;
+		if (u < -border || u > 1 + border) continue;
+		const Vec3   qv = s.cross(e1);
+		const double v  = a.dot(qv) / det;
+		if (v < -border || u + v > 1 + border) continue;
+		ts.push_back(e2.dot(qv) / det);
+	}
+	std::sort(ts.begin(), ts.end());
+	const double        merge = 1e-9 * (box.isEmpty() ? 0.0 : box.diagonal().norm());
+	std::vector<double> out;
+	for (double t : ts)
+		if (out.empty() || t - out.back() > merge) out.push_back(t);
+	return out;
+}
+
 double enclosing_diameter(const std::vector<Vec3>& pts)
 {
 	using K      = CGAL::Simple_cartesian<double>;

@@ -53,6 +53,12 @@ SurfaceMoments surface_moments(const TriMesh& m, const Vec3& o, const std::vecto
 // Point-in-solid by ray parity (a closed mesh).
 bool inside(const TriMesh& m, const Vec3& p);
 
+// Parameters t where the line c + t a crosses the mesh, sorted, one per crossing. A line through an edge
+// or a corner (an axis in a symmetry plane) meets several faces there, each within rounding of its
+// border: each face takes hits a little beyond its border, so none is lost, and one crossing's hits
+// are merged into one.
+std::vector<double> line_crossings(const TriMesh& m, const Vec3& c, const Vec3& a);
+
 // Connected components through shared edges; returns the component id of each face.
 std::vector<int> face_components(const TriMesh& m, int* count);
 

@@ -31,31 +31,6 @@ Vec3 centroid(const TriMesh& m)
 	return std::abs(v) > 0 ? Vec3(o + c / v) : o;
 }
 
-// Parameters where the line c + t a crosses the mesh, sorted.
-std::vector<double> crossings(const TriMesh& m, const Vec3& c, const Vec3& a)
-{
-	std::vector<double> ts;
-	for (const Tri& t : m.F) {
-		const Vec3 &p = m.V[t[0]], &q = m.V[t[1]], &r = m.V[t[2]];
-		const Vec3   e1 = q - p, e2 = r - p, h = a.cross(e2);
-		const double det = e1.dot(h);
-		if (std::abs(det) < 1e-300) continue;
-		const Vec3   s = c - p;
-		const double u = s.dot(h) / det;
-		if (u < 0 || u > 1) continue;
-		const Vec3   qv = s.cross(e1);
-		const double v  = a.dot(qv) / det;
-		if (v < 0 || u + v > 1) continue;
-		ts.push_back(e2.dot(qv) / det);
-	}
-	std::sort(ts.begin(), ts.end());
-	// a crossing through a shared edge or vertex is found once per face: merge near-equal ones
-	std::vector<double> out;
-	for (double t : ts)
-		if (out.empty() || t - out.back() > 1e-12) out.push_back(t);
-	return out;
-}
-
 // Major principal axis of a closed surface's area about c.
 Vec3 principal_axis(const TriMesh& m, const Vec3& c)
 {
@@ -88,8 +63,8 @@ struct Builder
 		const TriMesh hull = ConvexHull(mesh.V).mesh();
 		p.c = centroid(hull);
 		p.a = principal_axis(hull, p.c);
-		const std::vector<double> across = crossings(hull, p.c, p.a);
-		const std::vector<double> ts     = crossings(mesh, p.c, p.a);
+		const std::vector<double> across = line_crossings(hull, p.c, p.a);
+		const std::vector<double> ts     = line_crossings(mesh, p.c, p.a);
 		std::vector<std::array<double, 2>> in;   // inside intervals, small gaps closed, slivers dropped
 		for (size_t i = 0; i + 1 < ts.size(); i += 2) {
 			if (!in.empty() && ts[i] - in.back()[1] < 0.1 * D.tau) in.back()[1] = ts[i + 1];
@@ -126,7 +101,7 @@ struct Builder
 		for (int k = 1; k <= 7; ++k) {
 			const Vec3 x = p.c + (p.lo + (p.hi - p.lo) * k / 8) * p.a;
 			for (const Vec3& d : {u, v}) {
-				const std::vector<double> s = crossings(mesh, x, d);
+				const std::vector<double> s = line_crossings(mesh, x, d);
 				for (size_t i = 0; i + 1 < s.size(); i += 2)
 					if (s[i] <= 0 && s[i + 1] >= 0 && std::abs(s[i] + s[i + 1]) / 2 > opt.off_centre * (s[i + 1] - s[i]))
 						return true;
