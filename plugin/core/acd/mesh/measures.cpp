@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 namespace acd {
 
@@ -158,6 +159,24 @@ std::vector<int> face_components(const TriMesh& m, int* count)
 	return comp;
 }
 
+namespace {
+// Where the line c + t a meets triangle pqr (Moller-Trumbore), taking hits up to `border` (barycentric)
+// beyond its edges; none when it misses or runs parallel.
+std::optional<double> line_meets(const Vec3& p, const Vec3& q, const Vec3& r, const Vec3& c, const Vec3& a, double border)
+{
+	const Vec3   e1 = q - p, e2 = r - p, h = a.cross(e2);
+	const double det = e1.dot(h);
+	if (std::abs(det) < 1e-300) return std::nullopt;
+	const Vec3   s = c - p;
+	const double u = s.dot(h) / det;
+	if (u < -border || u > 1 + border) return std::nullopt;
+	const Vec3   qv = s.cross(e1);
+	const double v  = a.dot(qv) / det;
+	if (v < -border || u + v > 1 + border) return std::nullopt;
+	return e2.dot(qv) / det;
+}
+} // namespace
+
 bool inside(const TriMesh& m, const Vec3& p)
 {
 	// A direction unlikely to graze edges of axis-aligned or symmetric meshes.
@@ -165,42 +184,19 @@ bool inside(const TriMesh& m, const Vec3& p)
 	                 Vec3(1e-3, -2e-3, 3e-3);
 	int hits = 0;
 	for (const Tri& t : m.F) {
-		const Vec3 &a = m.V[t[0]], &b = m.V[t[1]], &c = m.V[t[2]];
-		Vec3   e1 = b - a, e2 = c - a, h = dir.cross(e2);
-		double det = e1.dot(h);
-		if (std::abs(det) < 1e-300) continue;
-		Vec3   sv = p - a;
-		double uu = sv.dot(h) / det;
-		if (uu < 0 || uu > 1) continue;
-		Vec3   q  = sv.cross(e1);
-		double vv = dir.dot(q) / det;
-		if (vv < 0 || uu + vv > 1) continue;
-		if (e2.dot(q) / det > 0) ++hits;
+		const std::optional<double> at = line_meets(m.V[t[0]], m.V[t[1]], m.V[t[2]], p, dir, 0);
+		if (at && *at > 0) ++hits;
 	}
 	return hits % 2 == 1;
 }
 
 std::vector<double> line_crossings(const TriMesh& m, const Vec3& c, const Vec3& a)
 {
-	constexpr double    border = 1e-9;   // in barycentric coordinates
 	std::vector<double> ts;
-	Eigen::AlignedBox3d box;
-	for (const Tri& t : m.F) {
-		const Vec3 &p = m.V[t[0]], &q = m.V[t[1]], &r = m.V[t[2]];
-		box.extend(p);
-		const Vec3   e1 = q - p, e2 = r - p, h = a.cross(e2);
-		const double det = e1.dot(h);
-		if (std::abs(det) < 1e-300) continue;
-		const Vec3   s = c - p;
-		const double u = s.dot(h) / det;
-		if (u < -border || u > 1 + border) continue;
-		const Vec3   qv = s.cross(e1);
-		const double v  = a.dot(qv) / det;
-		if (v < -border || u + v > 1 + border) continue;
-		ts.push_back(e2.dot(qv) / det);
-	}
+	for (const Tri& t : m.F)
+		if (const std::optional<double> at = line_meets(m.V[t[0]], m.V[t[1]], m.V[t[2]], c, a, 1e-9)) ts.push_back(*at);
 	std::sort(ts.begin(), ts.end());
-	const double        merge = 1e-9 * (box.isEmpty() ? 0.0 : box.diagonal().norm());
+	const double        merge = 1e-9 * bbox_diagonal(m.V);
 	std::vector<double> out;
 	for (double t : ts)
 		if (out.empty() || t - out.back() > merge) out.push_back(t);
