@@ -4,7 +4,7 @@ defaults were not chosen on (the robot sample is where they were).
   shared      the 17 shared meshes (../shared/data/meshes): scans, figures, CAD, open and closed;
   pymeshlab   pymeshlab's own sample meshes (an airplane, a bunny, a bone, a textured bunny);
   cad         the test suite's CAD solids (tests/support/cad_solids.py);
-  objects     household objects and castings modelled here with manifold3d: a cup, a mug, gears, a
+  objects     household objects and castings modelled here with manifold3d: a cup (the tests'), a mug, gears, a
               genus-3 block, a torus, a hex nut, a pipe tee, a ribbed casting, a pocketed bracket, a bowl.
 
 `meshes(folder)` writes each once as an OBJ into folder and lists (name, path); the makers are
@@ -32,11 +32,6 @@ def _mf():
 def _revolve(profile, n=64):
     mf = _mf()
     return mf.Manifold.revolve(mf.CrossSection([profile]), n)
-
-
-def cup():
-    """A cup: r 4 at the rim, 3 at the foot, 9 high, walls 0.4 thick."""
-    return _revolve([(0, 0), (3, 0), (4, 9), (3.6, 9), (2.65, 0.4), (0, 0.4)])
 
 
 def mug():
@@ -113,7 +108,7 @@ def pocket_bracket():
     return b - mf.Manifold.cube([2, 1.5, 3]).translate([-0.5, 1.75, 2])
 
 
-OBJECTS = {f.__name__: f for f in (cup, mug, bowl, gear24, gear8, genus3_block, torus, hex_nut, pipe_tee,
+OBJECTS = {f.__name__: f for f in (cad_solids.cup, mug, bowl, gear24, gear8, genus3_block, torus, hex_nut, pipe_tee,
                                    ribbed_casting, pocket_bracket)}
 
 

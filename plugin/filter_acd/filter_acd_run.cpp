@@ -260,6 +260,8 @@ FilterACD::decompose(const RichParameterList& par, MeshDocument& md, vcg::CallBa
 	    idx, o.tau, d.max_part_concavity(), d.max_hull_distance(), secs,
 	    d.max_parts_reached ? " (max_parts reached: some parts exceed tau)" : "");
 	if (d.merges > 0) log("%d neighbouring parts merged after the cuts (their unions within tau)", d.merges);
+	if (d.pick_rule == acd::PickRule::PartsNeeded)
+		log("The cuts picked by the parts their halves need left fewer parts than those picked by the worse half");
 	if (d.proxy_searches > 0)
 		log("Searched on a %d-face copy %g from the surface; every part certified on the mesh itself (%d searched again)",
 		    d.proxy_faces, d.proxy_distance, d.proxy_retries);
@@ -286,6 +288,7 @@ FilterACD::decompose(const RichParameterList& par, MeshDocument& md, vcg::CallBa
 		{"uncut_parts", uncut},
 		{"films_dropped", d.films_dropped},
 		{"merges", d.merges},
+		{"cuts_by_parts_needed", d.pick_rule == acd::PickRule::PartsNeeded},   // cut_search kept its second tree
 		{"merge_time_limit_reached", d.merge_time_limit_reached},
 		{"tree_nodes", (int) d.nodes.size()},
 		{"alpha_wrapped", run.prepared.done == acd::PreparedSolid::Wrapped},

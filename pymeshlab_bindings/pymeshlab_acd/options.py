@@ -8,6 +8,7 @@ DEFAULTS = dict(
     cut_plane_selection="bisector_or_face",   # bisector_or_face | best | bisector | min_section
     max_parts=0,                    # 0: no limit
     merge_parts=True,               # merge neighbouring parts while their union stays within tau
+    cut_search="thorough",          # thorough (two cut trees, the fewer parts kept) | fast (one, the paper's greedy)
     max_hull_vertices=0,            # per collision hull; 0: the exact hull
     engine="none",                  # none | mujoco | pybullet | physx | physx_gpu | unity: hulls within its limits
     preprocessing="auto",           # as given if a valid solid, else welded, else alpha-wrapped
@@ -31,6 +32,9 @@ HELP = dict(
     max_parts="stop after this many parts (0: no limit; some parts may then exceed tau)",
     merge_parts="merge neighbouring parts while their union stays within tau (--no-merge-parts: the cut "
                 "tree's leaves as they are)",
+    cut_search="thorough: grow the cut tree twice, cuts picked by the worse part's concavity (the paper) and by "
+               "the parts both parts are estimated to need, and keep the one with fewer parts (about twice the "
+               "time); fast: the first alone",
     max_hull_vertices="at most this many vertices per collision hull, on top of --engine's limits (0: none); a "
                       "reduced hull still contains its part",
     engine="make every collision hull meet this physics engine's limits (PhysX 255 vertices/255 polygons, its GPU "

@@ -111,14 +111,22 @@ def bossed_plate():
     return _cube([60, 40, 4], True).translate([0, 0, 2]) + boss.translate([0, 0, 4])
 
 
+def cup():
+    """A cup: r 4 at the rim, 3 at the foot, 9 high, walls 0.4 thick (a thin shell of revolution)."""
+    profile = [(0, 0), (3, 0), (4, 9), (3.6, 9), (2.65, 0.4), (0, 0.4)]
+    return _mf().Manifold.revolve(_mf().CrossSection([profile]), 64)
+
+
 SOLIDS = {
     "keyway": keyway, "keyway_open": keyway_open, "plate": plate, "flange": flange, "bracket": bracket,
     "pocket": pocket, "through_slot": through_slot, "d_flat_shaft": d_flat_shaft,
     "stepped_shaft": stepped_shaft, "belt_pulley": belt_pulley, "spur_gear": spur_gear, "t_slot_rail": t_slot_rail,
     "bossed_plate": bossed_plate,
 }
+# Thin shells, for the cut search's tests (many parts at small tau: not in the certificate's sweep).
+SHELLS = {"cup": cup}
 
 
 def make(name):
     """(vertices, faces) of the named solid."""
-    return _arrays(SOLIDS[name]())
+    return _arrays({**SOLIDS, **SHELLS}[name]())

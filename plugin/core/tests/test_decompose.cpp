@@ -50,9 +50,12 @@ TEST_CASE("l u plus known counts")
 		check_partition(U, d);
 		TriMesh P = shapes::extrude(shapes::plus_shape(), 0, 1);
 		d         = run(P, 0.01, sel);
-		CHECK((d.leaves().size() >= 4 && d.leaves().size() <= 5));
+		// The parts: the search keeps the tree that merges into fewer (its own leaves may be more). A
+		// plus is three convex pieces at best (a bar and two arms); the greedy rule alone makes 4 or 5.
+		CHECK((d.parts().size() >= 3 && d.parts().size() <= 5));
+		MESSAGE(d.leaves().size() << " leaves, " << d.parts().size() << " parts");
 		check_partition(P, d);
-		for (int i : d.leaves()) CHECK(d.nodes[i].concavity <= 0.01);
+		for (int i : d.parts()) CHECK(d.nodes[i].concavity <= 0.01);
 	}
 }
 

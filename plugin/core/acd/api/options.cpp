@@ -44,6 +44,13 @@ std::vector<Option> make_table()
 		 "After the cuts, merge parts that share a cut face while their union stays within tau (by the same measure "
 		 "as the cuts, hull distance included), the least concave union first: fewer parts, still an exact "
 		 "partition. Off: the cut tree's leaves as they are.", {}},
+		{"cut_search", O::Choice, (int) CutSearch::Thorough, "Cut search", "How hard the search for cuts looks.",
+		 {{"thorough", (int) CutSearch::Thorough,
+		   "grow the cut tree twice, each cut picked by another rule (its worse part's concavity, as the paper; or "
+		   "the parts both its parts are estimated to need afterwards), merge both and keep the one with fewer parts "
+		   "(about twice the time)"},
+		  {"fast", (int) CutSearch::Fast, "one cut tree, each cut picked by its worse part's concavity (the paper's "
+		                                  "greedy search)"}}},
 		{"output_hulls", O::Flag, 0, "Also add part hulls",
 		 "Add the convex hull of each part as a layer too (named acd_hull_<path>).", {}},
 		{"max_hull_vertices", O::Integer, 0, "Maximum hull vertices",

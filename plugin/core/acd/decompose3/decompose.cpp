@@ -175,6 +175,7 @@ struct Trial
 	bool         ok = false;
 	bool         crosses = false;   // keep_cavities: the plane cuts through a kept cavity
 	double       score = 0, sum = 0;
+	double       need = 0;          // the parts its halves are estimated to need (needs())
 	int          sliver = -1;       // the side a rejected plane shaved off
 	double       smaller = 0;       // the smaller side's share of the volume
 };
@@ -402,6 +403,7 @@ private:
 			}
 			t.score = std::max(a, b);
 			t.sum   = a + b;
+			t.need  = needs(a) + needs(b);
 			t.ok    = true;
 		}
 		catch (const Error&) {   // a part with no volume
@@ -419,6 +421,22 @@ private:
 		if (n.parent < 0 || D.nodes[n.parent].solids) return false;
 		const Node& p = D.nodes[n.parent];
 		return n.volume >= 0.99 * p.volume && n.concavity >= 0.99 * p.concavity && (n.notch - p.notch).norm() <= opt.tau;
+	}
+
+	bool by_need() const { return opt.pick_rule == PickRule::PartsNeeded; }
+
+	// The parts a half of concavity c is estimated to need: one within tau; beyond it at least two,
+	// and one more for each doubling of c (a cut roughly halves what it resolves).
+	double needs(double c) const { return c <= opt.tau ? 1 : 2 + std::log2(c / opt.tau); }
+
+	// A plane beats the bisector's need n0 only if its own is below n0 - delta; as either half needs at
+	// least one part, a half measured at this concavity or more already rules it out.
+	double need_beat(double n0) const
+	{
+		const double target = n0 - kNeedMargin - 1;
+		if (target <= 1) return 0;
+		if (target <= 2) return opt.tau;
+		return opt.tau * std::exp2(target - 2);
 	}
 
 	bool progresses(const Cut& c, const Trial& t) const
@@ -468,17 +486,19 @@ private:
 		// The bisector first: the others need only be scored far enough to see whether they beat it.
 		trial(c, 0, true, INFINITY, true);
 		const Trial& t0   = c.trials[0];
-		const double beat = t0.ok && !t0.crosses ? kClearlyLess * t0.score : INFINITY;
+		const double beat = !t0.ok || t0.crosses ? INFINITY : by_need() ? need_beat(t0.need) : kClearlyLess * t0.score;
 		parallel_for(c.planes.size() - 1, [&](size_t i) { trial(c, i + 1, true, beat); });
 	}
 
 	// Whether pick_plane keeps candidate 0, the bisector, unless another scores clearly less.
 	static bool bisector_stands(const Cut& c) { return c.hole < 0 && !c.by_section && !c.stalled && c.planes.size() > 1; }
 
+	// By the worse half (the paper's greedy rule) or by the parts both halves are estimated to need
+	// (a cut that leaves one half within tau is worth more than the worse half's concavity shows).
 	// The paper's bisector plane (candidate 0) stands unless another leaves clearly (10%) less
-	// concavity: greedy scores alone would rather shave small arms off one by one. Among the
-	// others, scores within a hair (planes are nudged ~1e-7 of the size off vertices) are ties,
-	// settled by the total concavity.
+	// concavity, or clearly (half a part) fewer parts to make: greedy scores alone would rather shave
+	// small arms off one by one. Among the others, scores within a hair (planes are nudged ~1e-7 of
+	// the size off vertices) are ties, settled by the total concavity.
 	void pick_plane(Cut& c) const
 	{
 		const double hair = 1e-6 * extent(D.nodes[c.id].mesh.V);
@@ -488,6 +508,10 @@ private:
 			for (int i = 0; i < (int) T.size(); ++i) {
 				const Trial& t = T[i];
 				if (!t.ok || (t.crosses && !allow_crossing) || (c.stalled && !progresses(c, t))) continue;
+				if (by_need() && !c.by_section) {
+					if (pick < 0 || t.need < T[pick].need - 1e-6 || (t.need <= T[pick].need + 1e-6 && t.score < T[pick].score - hair)) pick = i;
+					continue;
+				}
 				if (pick < 0 || t.score < T[pick].score - hair || (t.score <= T[pick].score + hair && t.sum < T[pick].sum - hair))
 					pick = i;
 			}
@@ -495,10 +519,11 @@ private:
 		}
 		// For a notch (not a cavity, whose planes are all scored alike): see above.
 		if (c.hole < 0 && !c.by_section && pick > 0 && T[0].ok && !T[0].crosses && !(c.stalled && !progresses(c, T[0])) &&
-		    !(T[pick].score < kClearlyLess * T[0].score))
+		    (by_need() ? !(T[pick].need < T[0].need - kNeedMargin) : !(T[pick].score < kClearlyLess * T[0].score)))
 			pick = 0;
 		c.pick = pick;
 	}
+
 
 	// At a sharp edge no plane of the edge splits (each shaves a sliver off): the notch's other
 	// planes are scored, as the bisector falls back to them, before the part is halved.
@@ -611,6 +636,7 @@ private:
 	}
 
 	static constexpr double kClearlyLess = 0.9;   // another plane's score must be below this times the bisector's
+	static constexpr double kNeedMargin  = 0.5;   // or its parts needed this many below the bisector's
 	static constexpr size_t kMaxDepth = 96;   // tree depth (path length) past which a node stays uncut
 	static constexpr int    kMaxFilms = 8;    // films dropped per node, so a node cannot loop
 };
@@ -627,6 +653,43 @@ void measure_node(Node& n, bool keep_cavities, double tau)
 	n.notch = Vec3::Zero();
 	take_measures(n, Measured(n.mesh, keep_cavities, tau));
 }
+
+namespace {
+
+// Certified first, then the fewer parts, then the nearer hulls (within rounding: a tie keeps the first).
+bool better(const Decomposition& a, const Decomposition& b)
+{
+	if (a.tau_convex() != b.tau_convex()) return a.tau_convex();
+	if (a.parts().size() != b.parts().size()) return a.parts().size() < b.parts().size();
+	return a.max_hull_distance() < b.max_hull_distance() - 1e-9;
+}
+
+// The search under each pick rule (cut_search = thorough; fast: the first alone), the better kept. A
+// greedy search's choices compound, so which rule leaves fewer parts shows only at the end; the
+// second search runs in the time the first left.
+Decomposition search_rules(const Solid& unit, const DecomposeOptions& opt)
+{
+	const auto start = std::chrono::steady_clock::now();
+	DecomposeOptions o = opt;
+	const bool both = opt.cut_search == CutSearch::Thorough && opt.max_parts == 0;
+	if (both && opt.progress)
+		o.progress = [&](int pct, const char* msg) { return opt.progress(pct / 2, msg); };
+	o.pick_rule = PickRule::WorseHalf;
+	Decomposition D = search(unit, o);
+	if (!both) return D;
+	if (opt.time_limit_seconds > 0) {
+		o.time_limit_seconds -= std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+		if (o.time_limit_seconds <= 0) return D;
+	}
+	if (opt.progress) o.progress = [&](int pct, const char* msg) { return opt.progress(50 + pct / 2, msg); };
+	o.pick_rule = PickRule::PartsNeeded;
+	Decomposition E = search(unit, o);
+	if (!better(E, D)) return D;
+	E.pick_rule = PickRule::PartsNeeded;
+	return E;
+}
+
+} // namespace
 
 Decomposition decompose(const Solid& solid, const DecomposeOptions& opt)
 {
@@ -648,7 +711,7 @@ Decomposition decompose(const Solid& solid, const DecomposeOptions& opt)
 	unit.volume /= s * s * s;
 	DecomposeOptions o = opt;
 	o.tau /= s;
-	Decomposition D = search(unit, o);
+	Decomposition D = search_rules(unit, o);
 	D.tau = opt.tau;
 	D.proxy_distance *= s;
 	for (Node& n : D.nodes) {

@@ -13,6 +13,21 @@
 
 namespace acd {
 
+// How hard the cut search looks (cut_search): one greedy search, or one per pick rule, the better kept.
+enum class CutSearch
+{
+	Thorough,
+	Fast
+};
+
+// What a candidate plane is judged by: its worse half's concavity (the paper's greedy rule), or the
+// parts its two halves are estimated to need afterwards.
+enum class PickRule
+{
+	WorseHalf,
+	PartsNeeded
+};
+
 struct DecomposeOptions
 {
 	double            tau = 0;   // model units; > 0
@@ -24,6 +39,8 @@ struct DecomposeOptions
 	double            time_limit_seconds = 0; // 0 = none; bounds the cuts and the merge after them
 	bool              merge_parts = true;     // merge neighbouring parts while their union is tau-convex (merge.h)
 	int               threads = 0;            // threads the decomposition may use (0: every core); the parts do not depend on it
+	CutSearch         cut_search = CutSearch::Thorough;
+	PickRule          pick_rule = PickRule::WorseHalf;   // one search's rule (set by cut_search's searches)
 	// Called with a percentage and a short status; return false to cancel (throws Error(Cancelled)).
 	std::function<bool(int, const char*)> progress;
 };
@@ -68,6 +85,7 @@ struct Decomposition
 	int               proxy_faces = 0;     // the first proxy's faces (0: searched on the solid itself)
 	double            proxy_distance = 0;  // its distance to the solid, measured (model units)
 	bool              merge_time_limit_reached = false;   // merging stopped by the time limit (parts still certified)
+	PickRule          pick_rule = PickRule::WorseHalf;    // the rule of the search kept
 	// The cut tree's leaves in a stable order (by tree path).
 	std::vector<int> leaves() const;
 	// The parts: the leaves not merged and the merged parts, by their (first leaf's) path.
