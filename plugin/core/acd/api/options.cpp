@@ -11,6 +11,16 @@ template <class Row> std::vector<OptionChoice> rows(const std::vector<Row>& tabl
 	return out;
 }
 
+std::vector<OptionChoice> cut_searches()
+{
+	return {{"thorough", (int) CutSearch::Thorough,
+	         "grow the cut tree twice, each cut picked by another rule (its worse part's concavity, as the paper; or "
+	         "the parts both its parts are estimated to need afterwards), merge both and keep the one with fewer parts "
+	         "(about twice the time)"},
+	        {"fast", (int) CutSearch::Fast, "one cut tree, each cut picked by its worse part's concavity (the paper's "
+	                                        "greedy search)"}};
+}
+
 std::vector<Option> make_table()
 {
 	using O = Option;
@@ -45,12 +55,7 @@ std::vector<Option> make_table()
 		 "as the cuts, hull distance included), the least concave union first: fewer parts, still an exact "
 		 "partition. Off: the cut tree's leaves as they are.", {}},
 		{"cut_search", O::Choice, (int) CutSearch::Thorough, "Cut search", "How hard the search for cuts looks.",
-		 {{"thorough", (int) CutSearch::Thorough,
-		   "grow the cut tree twice, each cut picked by another rule (its worse part's concavity, as the paper; or "
-		   "the parts both its parts are estimated to need afterwards), merge both and keep the one with fewer parts "
-		   "(about twice the time)"},
-		  {"fast", (int) CutSearch::Fast, "one cut tree, each cut picked by its worse part's concavity (the paper's "
-		                                  "greedy search)"}}},
+		 cut_searches()},
 		{"output_hulls", O::Flag, 0, "Also add part hulls",
 		 "Add the convex hull of each part as a layer too (named acd_hull_<path>).", {}},
 		{"max_hull_vertices", O::Integer, 0, "Maximum hull vertices",
