@@ -11,6 +11,18 @@ template <class Row> std::vector<OptionChoice> rows(const std::vector<Row>& tabl
 	return out;
 }
 
+std::vector<OptionChoice> cavity_choices()
+{
+	return {{"best_plane", (int) HoleHandling::BestPlane,
+	         "the principal plane, the other two principal planes and planes through the cavity towards the "
+	         "nearest hull facet, keeping the one leaving the least concave parts"},
+	        {"principal_plane", (int) HoleHandling::PrincipalPlane,
+	         "the paper's cut through the cavity's centre along its principal plane (the plane of its two major axes)"},
+	        {"keep_cavities", (int) HoleHandling::KeepCavities,
+	         "never cut for a cavity, measure concavity on the outer surface only and report the cavities left "
+	         "inside parts (those parts are then not tau-convex)"}};
+}
+
 std::vector<OptionChoice> cut_searches()
 {
 	return {{"thorough", (int) CutSearch::Thorough,
@@ -36,14 +48,7 @@ std::vector<Option> make_table()
 		 "How the plane through the most concave notch is chosen.", rows(cut_strategies())},
 		{"hole_handling", O::Choice, (int) HoleHandling::BestPlane, "Cavities (hole boundaries)",
 		 "How closed inner shells (cavities) are resolved; their notches never reach the hull.",
-		 {{"best_plane", (int) HoleHandling::BestPlane,
-		   "the principal plane, the other two principal planes and planes through the cavity towards the "
-		   "nearest hull facet, keeping the one leaving the least concave parts"},
-		  {"principal_plane", (int) HoleHandling::PrincipalPlane,
-		   "the paper's cut through the cavity's centre along its principal plane (the plane of its two major axes)"},
-		  {"keep_cavities", (int) HoleHandling::KeepCavities,
-		   "never cut for a cavity, measure concavity on the outer surface only and report the cavities left "
-		   "inside parts (those parts are then not tau-convex)"}}},
+		 cavity_choices()},
 		{"hole_order", O::Choice, (int) HoleOrder::First, "Cavity order", "When a cavity is cut.",
 		 {{"first", (int) HoleOrder::First, "the paper (a cavity's concavity is infinite): every cavity is cut before any notch"},
 		  {"by_concavity", (int) HoleOrder::ByConcavity, "a cavity is cut when its depth below the hull is the largest concavity left"}}},
