@@ -12,7 +12,7 @@ With the peers' published rows (bench/results/robots/robots-peers.json) it also 
 comparison with the peers that bench_robots' front() prints for the default setting.
 
 A setting is selection:tau:merge (merge 1 or 0), optionally followed by :wrap_alpha:wrap_offset (%);
-`coacd:THRESHOLD` runs CoACD itself on the same machine (scored alike), so that times compare with
+`coacd:THRESHOLD` runs CoACD itself on the same machine (scored alike), `vhacd:RESOLUTION` V-HACD 4, so that times compare with
 ours run for run: the summary then gives each of our settings' time against it, in all and on the
 largest mesh, and how each of our settings fares against it mesh by mesh: on how many meshes CoACD is as
 good or better in both hulls and error (errors within 2% count as equal, "dominated"), total hulls and
@@ -63,6 +63,42 @@ def run_coacd(inp, threshold, timeout):
         row = dict(hulls=r["hulls"], time=r["time"], worst=None, over=0)
         row.update(bench.metrics(inp, hobj, 50000))
         return row
+
+
+def run_vhacd(inp, resolution, timeout):
+    with tempfile.TemporaryDirectory() as tmp:
+        hobj = pathlib.Path(tmp) / "hulls.obj"
+        r = bench.run_method("vhacd4", {"resolution": int(resolution)}, inp, hobj, timeout)
+        if "error" in r:
+            return dict(error=r["error"])
+        row = dict(hulls=r["hulls"], time=r["time"], worst=None, over=0)
+        row.update(bench.metrics(inp, hobj, 50000))
+        return row
+
+
+def plot(done, settings, title, path):
+    """Hulls against hull error, one point per mesh and setting, each setting's medians as a large mark."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    fig, ax = plt.subplots(figsize=(6.4, 4.6))
+    for k, s in enumerate(settings):
+        rs = [d[s] for d in done.values() if "hull_error" in d.get(s, {})]
+        if not rs:
+            continue
+        c = plt.cm.tab10.colors[k % 10]
+        ax.scatter([r["hulls"] for r in rs], [max(1e-3, 100 * r["hull_error"]) for r in rs], s=12, color=c, alpha=0.45)
+        ax.scatter([statistics.median(r["hulls"] for r in rs)], [100 * statistics.median(r["hull_error"] for r in rs)],
+                   s=160, color=c, edgecolor="black", marker="*",
+                   label=f"{s}: {sum(r['hulls'] for r in rs)} hulls in all, {len(rs)} meshes")
+    ax.set_xscale("log")
+    ax.set_yscale("log")
+    ax.set_xlabel("hulls")
+    ax.set_ylabel("hull error (% of the diagonal; exact pieces at 0.001)")
+    ax.set_title(title, fontsize=10)
+    ax.legend(fontsize=7)
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
 
 
 def time_against(done, ours, theirs):
@@ -118,13 +154,15 @@ def table(done, settings, ms, label, coacd):
               f"{100 * med(c['hull_error'] for c in cs):.2f} | | | {sum(c['time'] for c in cs):.0f} |")
 
 
-def summary(rows, settings, peers, faces=None):
+def summary(rows, settings, peers, faces=None, plot_to=None, title=""):
     coacd = {r["mesh"]: r for r in peers if r["method"] == "coacd" and "0.05" in r["setting"]}
     faces = faces or {r["mesh"]: r["faces"] for r in peers}
     done = {}
     for r in rows:
         done.setdefault(r["mesh"], {})[r["setting"]] = dict(r, faces=faces.get(r["mesh"], 0))
     meshes = [m for m, d in done.items() if all(s in d and "error" not in d[s] for s in settings)]
+    if plot_to:
+        plot({m: done[m] for m in meshes}, settings, title, plot_to)
     table(done, settings, meshes, "every setting finished", coacd)
     if coacd:
         table(done, settings, [m for m in meshes if "hulls" in coacd.get(m, {})], "those with a CoACD 0.05 row too", coacd)
@@ -168,6 +206,7 @@ def main():
     ap.add_argument("--wrapped-only", action="store_true",
                     help="only the meshes that an earlier row of --out shows alpha wrapped")
     ap.add_argument("--report", action="store_true", help="run nothing: print the summary of the rows kept")
+    ap.add_argument("--plot", help="also plot hulls against error per setting (PNG path)")
     args = ap.parse_args()
     settings = args.settings.split(",")
     out = pathlib.Path(args.out)
@@ -183,6 +222,8 @@ def main():
                 continue
             if s.startswith("coacd:"):
                 row = dict(mesh=name, setting=s, **run_coacd(inp, float(s.split(":")[1]), args.timeout))
+            elif s.startswith("vhacd:"):
+                row = dict(mesh=name, setting=s, **run_vhacd(inp, float(s.split(":")[1]), args.timeout))
             else:
                 sel, tau, merge, *wrap = s.split(":")
                 row = dict(mesh=name, setting=s, **run(p, inp, sel, float(tau), merge == "1", args.timeout, wrap))
@@ -192,9 +233,11 @@ def main():
             print(json.dumps({k: row.get(k) for k in ("mesh", "setting", "hulls", "hull_error", "time", "worst")}),
                   flush=True)
     if args.set == "objects":
-        summary(rows, settings, [], {n: bench.face_count(p) for n, p in object_set.meshes(OBJECTS)})
+        summary(rows, settings, [], {n: bench.face_count(p) for n, p in object_set.meshes(OBJECTS)}, args.plot,
+                "meshes that are not robot links (bench/object_set.py)")
     else:
-        summary(rows, settings, json.loads((REPO / "bench" / "results" / "robots" / "robots-peers.json").read_text()))
+        summary(rows, settings, json.loads((REPO / "bench" / "results" / "robots" / "robots-peers.json").read_text()),
+                plot_to=args.plot, title=f"the robot sample ({args.sample} meshes)")
 
 
 if __name__ == "__main__":
