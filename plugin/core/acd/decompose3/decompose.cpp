@@ -666,12 +666,14 @@ bool better(const Decomposition& a, const Decomposition& b)
 
 // The search under each pick rule (cut_search = thorough; fast: the first alone), the better kept. A
 // greedy search's choices compound, so which rule leaves fewer parts shows only at the end; the
-// second search runs in the time the first left.
+// second search runs in the time the first left. A solid large enough to be searched on a proxy is
+// searched once: there the time goes to certifying its parts, which a second search would double.
 Decomposition search_rules(const Solid& unit, const DecomposeOptions& opt)
 {
 	const auto start = std::chrono::steady_clock::now();
 	DecomposeOptions o = opt;
-	const bool both = opt.cut_search == CutSearch::Thorough && opt.max_parts == 0;
+	const bool both = opt.cut_search == CutSearch::Thorough && opt.max_parts == 0 &&
+	                  unit.mesh.F.size() <= (size_t) ProxySettings().above;
 	if (both && opt.progress)
 		o.progress = [&](int pct, const char* msg) { return opt.progress(pct / 2, msg); };
 	o.pick_rule = PickRule::WorseHalf;
