@@ -19,6 +19,8 @@ HERE = pathlib.Path(__file__).resolve().parent
 REPO = HERE.parent
 sys.path.insert(0, str(REPO / "tests"))
 from support import cad_solids  # noqa: E402
+sys.path.insert(0, str(HERE))
+from bench_open import load as _load, write_obj as _write  # noqa: E402
 
 SHARED = REPO.parent / "shared" / "data" / "meshes"
 PYMESHLAB_SAMPLES = ("airplane.obj", "bunny.obj", "bone.ply", "bunny10k_textured.obj")
@@ -112,31 +114,14 @@ OBJECTS = {f.__name__: f for f in (cad_solids.cup, mug, bowl, gear24, gear8, gen
                                    ribbed_casting, pocket_bracket)}
 
 
-def _write(path, V, F):
-    from pymeshlab_acd.export import write_obj_objects
-    write_obj_objects(path, [(V, F)], "mesh")
-
-
-def _load(path):
-    import pymeshlab
-    ms = pymeshlab.MeshSet()
-    ms.load_new_mesh(str(path))
-    return ms.current_mesh().vertex_matrix(), ms.current_mesh().face_matrix()
-
-
 def sources():
     """(name, maker) of every mesh of the set; a maker returns (vertices, faces)."""
-    import numpy as np
     import pymeshlab
     out = [("shared/" + p.stem, lambda p=p: _load(p)) for p in sorted(SHARED.iterdir()) if p.suffix in (".obj", ".ply")]
     samples = pathlib.Path(pymeshlab.__file__).parent / "tests" / "sample_meshes"
     out += [("pymeshlab/" + pathlib.Path(n).stem, lambda n=n: _load(samples / n)) for n in PYMESHLAB_SAMPLES]
     out += [("cad/" + n, lambda n=n: cad_solids.make(n)) for n in sorted(cad_solids.SOLIDS)]
-
-    def arrays(solid):
-        m = solid.to_mesh()
-        return np.asarray(m.vert_properties, float)[:, :3].copy(), np.asarray(m.tri_verts, np.int32).copy()
-    out += [("objects/" + n, lambda f=f: arrays(f())) for n, f in sorted(OBJECTS.items())]
+    out += [("objects/" + n, lambda f=f: cad_solids._arrays(f())) for n, f in sorted(OBJECTS.items())]
     return out
 
 
