@@ -25,7 +25,7 @@ def decompose(name, **params):
 
 def test_thorough_search_gives_the_cup_fewer_parts_all_within_tau():
     _, fast, fast_ids = decompose("cup", cut_search="fast")
-    ms, res, ids = decompose("cup")   # the default: thorough
+    ms, res, ids = decompose("cup", cut_search="thorough")
     assert res["tau_convex"] and fast["tau_convex"]
     check_partition(ms, 0, ids, tau_abs=res["tau_model_units"], overlap_samples=10)
     # The parts-needed tree is kept, with at most two thirds of the greedy search's parts.
@@ -38,7 +38,7 @@ def test_thorough_search_never_gives_more_parts(name):
     """On CAD steps the worse-part rule cuts along the faces into exact pieces; the other rule would
     leave more parts, so the first tree is the one kept."""
     _, fast, fast_ids = decompose(name, cut_search="fast")
-    ms, res, ids = decompose(name)
+    ms, res, ids = decompose(name, cut_search="thorough")
     check_partition(ms, 0, ids, tau_abs=res["tau_model_units"])
     assert len(ids) <= len(fast_ids)
     assert not res["cuts_by_parts_needed"]
@@ -47,6 +47,6 @@ def test_thorough_search_never_gives_more_parts(name):
 def test_thorough_search_is_the_same_on_any_thread_count():
     outs = []
     for threads in (1, 2):
-        ms, res, ids = decompose("cup", threads=threads)
+        ms, res, ids = decompose("cup", cut_search="thorough", threads=threads)
         outs.append([ms.mesh(i).vertex_matrix().tobytes() + ms.mesh(i).face_matrix().tobytes() for i in ids])
     assert outs[0] == outs[1]

@@ -50,8 +50,8 @@ TEST_CASE("l u plus known counts")
 		check_partition(U, d);
 		TriMesh P = shapes::extrude(shapes::plus_shape(), 0, 1);
 		d         = run(P, 0.01, sel);
-		// The parts: the search keeps the tree that merges into fewer (its own leaves may be more). A
-		// plus is three convex pieces at best (a bar and two arms); the greedy rule alone makes 4 or 5.
+		// The parts (a merged tree's leaves may be more). A plus is three convex pieces at best (a bar and
+		// two arms), which the thorough search finds; the greedy rule alone makes 4 or 5.
 		CHECK((d.parts().size() >= 3 && d.parts().size() <= 5));
 		MESSAGE(d.leaves().size() << " leaves, " << d.parts().size() << " parts");
 		check_partition(P, d);
