@@ -429,8 +429,8 @@ private:
 	// and one more for each doubling of c (a cut roughly halves what it resolves).
 	double needs(double c) const { return c <= opt.tau ? 1 : 2 + std::log2(c / opt.tau); }
 
-	// A plane beats the bisector's need n0 only if its own is below n0 - delta; as either half needs at
-	// least one part, a half measured at this concavity or more already rules it out.
+	// A plane beats the bisector's need n0 only if its own is below n0 - kNeedMargin; as either half
+	// needs at least one part, a half measured at this concavity or more already rules it out.
 	double need_beat(double n0) const
 	{
 		const double target = n0 - kNeedMargin - 1;
@@ -523,7 +523,6 @@ private:
 			pick = 0;
 		c.pick = pick;
 	}
-
 
 	// At a sharp edge no plane of the edge splits (each shaves a sliver off): the notch's other
 	// planes are scored, as the bisector falls back to them, before the part is halved.
