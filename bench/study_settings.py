@@ -54,21 +54,18 @@ def run(p, inp, sel, tau, merge, timeout, wrap=()):
         return row
 
 
-def run_coacd(inp, threshold, timeout):
-    with tempfile.TemporaryDirectory() as tmp:
-        hobj = pathlib.Path(tmp) / "hulls.obj"
-        r = bench.run_method("coacd", {"threshold": threshold}, inp, hobj, timeout)
-        if "error" in r:
-            return dict(error=r["error"])
-        row = dict(hulls=r["hulls"], time=r["time"], worst=None, over=0)
-        row.update(bench.metrics(inp, hobj, 50000))
-        return row
+# A peer's setting prefix: its method in bench.run_method and its one parameter.
+PEERS = {"coacd": ("coacd", lambda x: {"threshold": float(x)}),
+         "vhacd": ("vhacd4", lambda x: {"resolution": int(float(x))})}
 
 
-def run_vhacd(inp, resolution, timeout):
+def run_peer(setting, inp, timeout):
+    """A peer's row (`coacd:THRESHOLD`, `vhacd:RESOLUTION`), scored as ours are."""
+    prefix, value = setting.split(":")
+    method, params = PEERS[prefix]
     with tempfile.TemporaryDirectory() as tmp:
         hobj = pathlib.Path(tmp) / "hulls.obj"
-        r = bench.run_method("vhacd4", {"resolution": int(resolution)}, inp, hobj, timeout)
+        r = bench.run_method(method, params(value), inp, hobj, timeout)
         if "error" in r:
             return dict(error=r["error"])
         row = dict(hulls=r["hulls"], time=r["time"], worst=None, over=0)
@@ -220,10 +217,8 @@ def main():
         for s in settings:
             if (name, s) in have:
                 continue
-            if s.startswith("coacd:"):
-                row = dict(mesh=name, setting=s, **run_coacd(inp, float(s.split(":")[1]), args.timeout))
-            elif s.startswith("vhacd:"):
-                row = dict(mesh=name, setting=s, **run_vhacd(inp, float(s.split(":")[1]), args.timeout))
+            if s.split(":")[0] in PEERS:
+                row = dict(mesh=name, setting=s, **run_peer(s, inp, args.timeout))
             else:
                 sel, tau, merge, *wrap = s.split(":")
                 row = dict(mesh=name, setting=s, **run(p, inp, sel, float(tau), merge == "1", args.timeout, wrap))
