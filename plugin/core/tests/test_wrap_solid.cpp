@@ -189,7 +189,9 @@ TEST_CASE("an opening wider than the coarsest wrap would close keeps the skin")
 	CHECK(!r.capped);
 	CHECK(r.cap_share < 0.25);
 	CHECK(r.alpha == 0.05);
-	CHECK(r.to_input < 0.02);
+	// The skin hugs the sheet: its corners at the offset, the faces that curl round the rim within alpha.
+	CHECK(r.to_input < 0.05);
+	CHECK(r.to_input > 0.005);
 }
 
 TEST_CASE("a triangle soup of a closed box is welded not wrapped")

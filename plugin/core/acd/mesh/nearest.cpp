@@ -59,4 +59,22 @@ double NearestOnSurface::farthest(const std::vector<Vec3>& points, size_t sample
 	return *std::max_element(d.begin(), d.end());
 }
 
+double NearestOnSurface::farthest_on(const TriMesh& other) const
+{
+	std::vector<double> corner(other.V.size(), 0), d(other.F.size(), 0);
+	std::vector<char>   used(other.V.size(), 0);
+	for (const Tri& t : other.F)
+		if (finite_face(other, t)) used[t[0]] = used[t[1]] = used[t[2]] = 1;
+	parallel_for_chunked(other.V.size(), 4096, [&](size_t v) { corner[v] = used[v] ? distance(other.V[v]) : 0; });
+	parallel_for_chunked(other.F.size(), 1024, [&](size_t f) {
+		const Tri& t = other.F[f];
+		if (!finite_face(other, t)) return;
+		const Vec3 &a = other.V[t[0]], &b = other.V[t[1]], &c = other.V[t[2]];
+		d[f] = std::max({corner[t[0]], corner[t[1]], corner[t[2]]});
+		for (const Vec3& p : {Vec3((a + b) / 2), Vec3((b + c) / 2), Vec3((c + a) / 2), Vec3((a + b + c) / 3)})
+			d[f] = std::max(d[f], distance(p));
+	});
+	return d.empty() ? 0.0 : *std::max_element(d.begin(), d.end());
+}
+
 } // namespace acd

@@ -24,6 +24,10 @@ public:
 	// The largest distance from `points` to the surface: from every point, or from `samples` evenly
 	// spaced ones when there are more.
 	double farthest(const std::vector<Vec3>& points, size_t samples = 200000) const;
+	// The largest distance from another surface to this one, sampled at its vertices and at each face's
+	// edge midpoints and centroid: a face spanning an opening lies farthest in its middle, where its
+	// corners, on the rim, show nothing. Faces with a corner out of range or not finite are skipped.
+	double farthest_on(const TriMesh& other) const;
 
 private:
 	struct Tree;

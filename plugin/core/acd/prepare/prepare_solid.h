@@ -47,7 +47,7 @@ struct PreparedSolid
 	bool        capped  = false;  // openings closed along the input's winding-number level set
 	bool        skin    = false;  // the input encloses no solid: the wrap is a thin skin about it
 	double      cap_share  = 0;   // share of that level set spanning openings
-	double      to_input   = 0;   // largest distance from the solid's vertices to the input (model units)
+	double      to_input   = 0;   // largest distance from the solid's surface to the input (model units)
 	double      from_input = 0;   // and from the input's vertices to the solid (0 when as given)
 	double      size    = 0;      // enclosing diameter of the input's finite vertices
 	size_t      faces_in = 0;

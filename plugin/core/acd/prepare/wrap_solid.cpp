@@ -81,7 +81,7 @@ TriMesh          coarse_copy(const TriMesh& welded, double offset, double& cell)
 
 std::pair<double, double> wrap_distances(const TriMesh& wrap, const TriMesh& input, const NearestOnSurface& near)
 {
-	return {near.farthest(wrap.V), NearestOnSurface(wrap).farthest(finite_vertices(input))};
+	return {near.farthest_on(wrap), NearestOnSurface(wrap).farthest(finite_vertices(input))};
 }
 
 namespace {

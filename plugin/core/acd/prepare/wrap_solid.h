@@ -24,7 +24,7 @@ struct WrapSolidResult
 	bool        skin    = false;    // the input encloses no solid: the wrap is a thin skin about it
 	double      cap_share = 0;      // share of the level set's area that spans openings
 	double      coarse_cell = 0;    // a big input is wrapped with its vertices this close merged (0: none)
-	double      to_input   = 0;     // largest distance from the wrap's vertices to the input
+	double      to_input   = 0;     // largest distance from the wrap's surface to the input
 	double      from_input = 0;     // and from the input's vertices to the wrap (model units)
 	std::string reason;             // why the input was not used as given
 	int         reason_code  = 0;   // and that error's Error::Code and count
@@ -51,8 +51,9 @@ std::vector<double> winding_numbers(const TriMesh& surface, const std::vector<Ve
 WrapSolidResult wrap_solid(const TriMesh& input, double alpha, double offset, double max_alpha,
                            double min_inside = 0.5, double max_cap_share = 0.25);
 
-// How far a wrap lies from its input, both ways, measured at vertices: the largest distance from the
-// wrap's vertices to the input (near: the input's tree) and from the input's finite vertices to the wrap.
+// How far a wrap lies from its input, both ways: the largest distance from the wrap's surface (its
+// vertices, edge midpoints and face centroids) to the input (near: the input's tree), and from the input's
+// finite vertices to the wrap.
 std::pair<double, double> wrap_distances(const TriMesh& wrap, const TriMesh& input, const NearestOnSurface& near);
 
 } // namespace acd
