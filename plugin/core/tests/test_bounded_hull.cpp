@@ -100,6 +100,26 @@ TEST_CASE("a plate thinner than the weld keeps its exact hull under a budget")
 	}
 }
 
+TEST_CASE("a thin part's twin corners are welded too: no corners an engine would weld")
+{
+	// A plate 1/500 as thick as it is wide, each corner with a twin 3e-8 of its size off: the hull fits
+	// the budget as it is, but welded, holding the twins means scaling it across its thickness: a reach
+	// of hundreds of times the twins' distance, still far below the plate's own size.
+	std::vector<Vec3> pts = shapes::box(Vec3(0, 0, 0), Vec3(1, 1, 0.002)).V;
+	for (size_t i = 0, n = pts.size(); i < n; ++i) pts.push_back(pts[i] + 3e-8 * Vec3(1, 0.5, 0.2 * i).normalized());
+	const ConvexHull h(pts);
+	REQUIRE(h.points.size() > 8);
+	const BoundedHull b = bounded_hull(h, engine(Engine::PhysXGpu).budget);
+	CHECK(b.within_budget);
+	CHECK(outside(pts, b.mesh) <= 1e-12);
+	CHECK(b.reach > 1e-5);   // beyond what a weld without twins is allowed
+	CHECK(b.reach <= 1e-3);
+	CHECK(b.mesh.V.size() == 8);
+	for (size_t i = 0; i < b.mesh.V.size(); ++i)
+		for (size_t j = i + 1; j < b.mesh.V.size(); ++j) CHECK((b.mesh.V[i] - b.mesh.V[j]).norm() > 1e-6);
+	CHECK(polygons(b.mesh, 1e-9) <= 64);
+}
+
 TEST_CASE("a reduced hull meets each engine's budget and still contains the exact hull")
 {
 	const std::vector<Vec3> sphere = shapes::sphere(4, 1.0).V;   // 2562 hull vertices

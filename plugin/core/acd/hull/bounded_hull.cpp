@@ -192,6 +192,16 @@ ConvexHull weld_corners(const ConvexHull& h, double tol)
 	return ConvexHull(kept);
 }
 
+// Whether two of the points lie within `tol` of each other (swept along x).
+bool clustered(std::vector<Vec3> P, double tol)
+{
+	std::sort(P.begin(), P.end(), [](const Vec3& a, const Vec3& b) { return a.x() < b.x(); });
+	for (size_t i = 0; i < P.size(); ++i)
+		for (size_t j = i + 1; j < P.size() && P[j].x() - P[i].x() <= tol; ++j)
+			if ((P[j] - P[i]).norm() <= tol) return true;
+	return false;
+}
+
 // How far the points of P stand outside the hull's triangles, as a share of each triangle plane's distance
 // from c (<= 0: all inside). Each triangle's own plane, as an engine or Qhull sees the hull: a merged
 // facet's fitted plane can pass a few rounding steps beside its triangles.
@@ -270,7 +280,11 @@ BoundedHull bounded_hull(const ConvexHull& exact, const HullBudget& budget, bool
 		// beyond itself to hold its points: its exact hull is kept as it is.
 		const std::optional<Held> clean = weld_and_hold(exact, P, c, 1e-6 * size);
 		BoundedHull b  = clean ? result(clean->hull, exact, false, budget) : BoundedHull{};
-		const bool  ok = clean && clean->holds && b.within_budget && b.reach <= 1e-5 * size;
+		// Corners closer than the weld would be welded by an engine, which then counts the slivers between
+		// them as polygons of their own: such a hull is welded whenever its weld holds the points near
+		// the part (1e-3 of its size: a plate thinner than the weld is held only far out).
+		const double near = clustered(exact.points, 1e-6 * size) ? 1e-3 : 1e-5;
+		const bool   ok   = clean && clean->holds && b.within_budget && b.reach <= near * size;
 		if (!ok) b = result(exact, exact, false, budget);
 		if (measure_inscribed) measure(b, ok ? clean->hull : exact);
 		return b;
