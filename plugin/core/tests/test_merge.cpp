@@ -164,3 +164,28 @@ TEST_CASE("merge: a time limit stops merging and leaves a certified partition")
 	merge_parts(G, o.tau, [&](int, const char* msg) { return said.emplace_back(msg), true; });
 	CHECK(std::any_of(said.begin(), said.end(), [](const std::string& m) { return m.find("pairs measured") != std::string::npos; }));
 }
+
+TEST_CASE("merge: a memo measures each union once and gives the same parts")
+{
+	const TriMesh          ring = shapes::torus(2, 0.5, 24, 12);
+	const DecomposeOptions o    = unmerged(ring, 0.05);
+	const Decomposition    cut  = decompose(make_solid(ring), o);
+	Decomposition          plain = cut, first = cut, again = cut;
+	merge_parts(plain, o.tau);
+	MergeMemo memo;
+	merge_parts(first, o.tau, {}, 0, &memo);
+	const size_t measured = memo.size();
+	CHECK(measured >= cut.leaves().size() - 1);   // every neighbouring pair at least
+	merge_parts(again, o.tau, {}, 0, &memo);
+	CHECK(memo.size() == measured);   // the same tree again: every union from the memo
+	for (const Decomposition* D : {&first, &again}) {
+		REQUIRE(D->parts() == plain.parts());
+		for (int p : plain.parts()) {
+			CHECK(D->nodes[p].mesh.V == plain.nodes[p].mesh.V);
+			CHECK(D->nodes[p].mesh.F == plain.nodes[p].mesh.F);
+			CHECK(D->nodes[p].concavity == plain.nodes[p].concavity);
+			CHECK(D->nodes[p].merged == plain.nodes[p].merged);
+		}
+	}
+	CHECK(plain.merges > 0);
+}

@@ -676,7 +676,8 @@ Decomposition search_rules(const Solid& unit, const DecomposeOptions& opt)
 	if (both && opt.progress)
 		o.progress = [&](int pct, const char* msg) { return opt.progress(pct / 2, msg); };
 	o.pick_rule = PickRule::WorseHalf;
-	Decomposition D = search(unit, o);
+	MergeMemo     memo;   // the two trees share their first cuts, and their merges many unions
+	Decomposition D = search(unit, o, {}, both ? &memo : nullptr);
 	if (!both) return D;
 	if (opt.time_limit_seconds > 0) {
 		o.time_limit_seconds -= std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -684,7 +685,7 @@ Decomposition search_rules(const Solid& unit, const DecomposeOptions& opt)
 	}
 	if (opt.progress) o.progress = [&](int pct, const char* msg) { return opt.progress(50 + pct / 2, msg); };
 	o.pick_rule = PickRule::PartsNeeded;
-	Decomposition E = search(unit, o);
+	Decomposition E = search(unit, o, {}, &memo);
 	if (!better(E, D)) return D;
 	E.pick_rule = PickRule::PartsNeeded;
 	return E;

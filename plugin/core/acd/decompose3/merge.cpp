@@ -14,7 +14,11 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <array>
+#include <cstdint>
+#include <cstring>
 #include <map>
+#include <mutex>
 #include <optional>
 #include <queue>
 #include <set>
@@ -94,10 +98,40 @@ std::vector<int> leaves_below(const Decomposition& D, int id)
 	return out;
 }
 
+// A 64-bit hash of raw words, each word mixed in (splitmix64's finaliser).
+std::uint64_t mix(std::uint64_t h, const void* data, size_t bytes)
+{
+	const unsigned char* p = static_cast<const unsigned char*>(data);
+	for (size_t i = 0; i < bytes; i += 8) {
+		std::uint64_t w = 0;
+		std::memcpy(&w, p + i, std::min<size_t>(8, bytes - i));
+		h ^= w + 0x9e3779b97f4a7c15ULL + (h << 6) + (h >> 2);
+		h ^= h >> 30, h *= 0xbf58476d1ce4e5b9ULL, h ^= h >> 27, h *= 0x94d049bb133111ebULL, h ^= h >> 31;
+	}
+	return h;
+}
+
+std::uint64_t content_hash(const TriMesh& m)
+{
+	const std::uint64_t sizes[2] = {m.V.size(), m.F.size()};
+	return mix(mix(mix(0, sizes, sizeof sizes), m.V.data(), m.V.size() * sizeof(Vec3)), m.F.data(), m.F.size() * sizeof(Tri));
+}
+
+std::uint64_t planes_hash(const std::vector<Plane>& planes)
+{
+	std::uint64_t h = planes.size();
+	for (const Plane& p : planes) {
+		const double w[4] = {p.n.x(), p.n.y(), p.n.z(), p.d};
+		h = mix(h, w, sizeof w);
+	}
+	return h;
+}
+
 // A part while merging: the leaves it unites, its solid and its measures.
 struct Group
 {
 	std::vector<int>  leaves;    // node ids, path order
+	std::uint64_t     content = 0;   // its solid's vertices and faces, hashed (MergeMemo's key)
 	Node              part;      // its solid and measures, as the merged part's node will hold them
 	std::vector<Vec3> extreme;   // the vertices of its hull
 	long              crossings = -1;  // faces crossing away from the cuts between its leaves (-1: not counted)
@@ -110,12 +144,25 @@ struct Candidate
 	Group u;                 // their union
 };
 
+} // namespace
+
+// The unions measured, by (first part, second part, cuts): the union as a group without its leaves, or
+// none where it failed the certificate.
+struct MergeMemo::Unions
+{
+	std::mutex                                                     mutex;
+	std::map<std::array<std::uint64_t, 3>, std::optional<Group>>   by_key;
+};
+
+namespace {
+
 class Merger
 {
 public:
-	Merger(Decomposition& D, double tau, const std::function<bool(int, const char*)>& progress, double seconds)
+	Merger(Decomposition& D, double tau, const std::function<bool(int, const char*)>& progress, double seconds,
+	       MergeMemo* memo)
 	    : D(D), tau(tau), eps(1e-9 * extent(D.nodes[0].mesh.V)), progress(progress), seconds(seconds),
-	      start(std::chrono::steady_clock::now()), heap(Later{this})
+	      start(std::chrono::steady_clock::now()), memo(memo), heap(Later{this})
 	{
 	}
 
@@ -139,6 +186,7 @@ private:
 	const std::function<bool(int, const char*)>&    progress;
 	const double                                    seconds;   // 0: no time limit
 	const std::chrono::steady_clock::time_point     start;
+	MergeMemo* const                                memo;
 	std::vector<Group>                              groups;
 	std::vector<std::set<int>>                      nbr;
 	std::map<std::pair<int, int>, int>              contact;   // neighbouring leaves -> the cut between them
@@ -173,8 +221,9 @@ private:
 		for (int l : D.leaves()) {
 			const Node& n = D.nodes[l];
 			Group       g;
-			g.leaves = {l};
-			g.part   = n;
+			g.leaves  = {l};
+			g.part    = n;
+			g.content = memo ? content_hash(n.mesh) : 0;
 			// Only certified parts merge: an uncut leaf or one holding a kept cavity stays as it is.
 			g.alive = n.cavities == 0 && certified(n, tau);
 			groups.push_back(std::move(g));
@@ -250,8 +299,53 @@ private:
 		return g.crossings >= 0 ? g.crossings : (long) self_crossings(g.part.mesh, bbox_diagonal(g.part.mesh.V)).size();
 	}
 
-	// The union of groups a and b if it passes the certificate.
+	// The cuts groups a and b touch along, where their faces are glued.
+	std::vector<Plane> contact_planes(int a, int b) const
+	{
+		std::set<int> cuts;
+		for (int x : groups[a].leaves)
+			for (int y : groups[b].leaves) {
+				const auto it = contact.find({std::min(x, y), std::max(x, y)});
+				if (it != contact.end()) cuts.insert(it->second);
+			}
+		std::vector<Plane> planes;
+		for (int c : cuts) planes.push_back(D.nodes[c].plane);
+		return planes;
+	}
+
+	std::vector<int> merged_leaves(int a, int b) const
+	{
+		const Group &A = groups[a], &B = groups[b];
+		std::vector<int> leaves;
+		std::merge(A.leaves.begin(), A.leaves.end(), B.leaves.begin(), B.leaves.end(), std::back_inserter(leaves),
+		           [&](int x, int y) { return D.nodes[x].path < D.nodes[y].path; });
+		return leaves;
+	}
+
+	// The union of groups a and b if it passes the certificate; from the memo when it was measured.
 	std::optional<Group> unite(int a, int b) const
+	{
+		if (!memo) return measure_union(a, b);
+		const std::uint64_t                cuts[2] = {planes_hash(contact_planes(a, b)), planes_hash(separating(merged_leaves(a, b)))};
+		const std::array<std::uint64_t, 3> key     = {groups[a].content, groups[b].content, mix(0, cuts, sizeof cuts)};
+		{
+			std::lock_guard<std::mutex> lock(memo->unions->mutex);
+			const auto                  it = memo->unions->by_key.find(key);
+			if (it != memo->unions->by_key.end()) {
+				std::optional<Group> g = it->second;
+				if (g) g->leaves = merged_leaves(a, b);
+				return g;
+			}
+		}
+		std::optional<Group> g = measure_union(a, b);
+		std::lock_guard<std::mutex> lock(memo->unions->mutex);
+		std::optional<Group>&       kept = memo->unions->by_key[key];
+		kept                             = g;
+		if (kept) kept->leaves.clear();
+		return g;
+	}
+
+	std::optional<Group> measure_union(int a, int b) const
 	{
 		const Group &A = groups[a], &B = groups[b];
 		// Outside both parts the distance to their union is the distance to the nearer part, so the
@@ -267,16 +361,8 @@ private:
 		const ConvexHull h(corners);
 		if (hull_reach(both, h, std::vector<char>(h.facets(), 1), bar(), 0.1 * tau, 1e9, kPrefilterEvaluations).lower > bar())
 			return std::nullopt;
-		// The cuts they touch along, where their faces are glued.
-		std::set<int> cuts;
-		for (int x : A.leaves)
-			for (int y : B.leaves) {
-				const auto it = contact.find({std::min(x, y), std::max(x, y)});
-				if (it != contact.end()) cuts.insert(it->second);
-			}
-		std::vector<Plane> planes;
-		for (int c : cuts) planes.push_back(D.nodes[c].plane);
-		Solid s;
+		const std::vector<Plane> planes = contact_planes(a, b);
+		Solid                    s;
 		try {
 			s = make_solid(glue(PA.mesh, PB.mesh, planes, eps));
 		}
@@ -285,10 +371,8 @@ private:
 		}
 		// No fold of its own: the union crosses itself no more than its parts did (a part cut from a
 		// surface that nearly touches itself may carry such crossings from the cuts).
-		std::vector<int> leaves;
-		std::merge(A.leaves.begin(), A.leaves.end(), B.leaves.begin(), B.leaves.end(), std::back_inserter(leaves),
-		           [&](int x, int y) { return D.nodes[x].path < D.nodes[y].path; });
-		const long crossings = crossings_off_seams(s, separating(leaves));
+		std::vector<int> leaves = merged_leaves(a, b);
+		const long       crossings = crossings_off_seams(s, separating(leaves));
 		if (s.shells != 1 || s.cavities > 0 || (crossings > 0 && crossings > own_crossings(A) + own_crossings(B)))
 			return std::nullopt;
 		if (std::abs(s.volume - PA.volume - PB.volume) > 1e-6 * (PA.volume + PB.volume)) return std::nullopt;
@@ -307,7 +391,8 @@ private:
 		n.mesh      = std::move(s.mesh);
 		g.extreme   = extreme_points(corners);
 		g.crossings = crossings;
-		g.leaves = std::move(leaves);
+		g.leaves    = std::move(leaves);
+		g.content   = memo ? content_hash(n.mesh) : 0;
 		return g;
 	}
 
@@ -398,6 +483,14 @@ private:
 
 } // namespace
 
+MergeMemo::MergeMemo() : unions(std::make_unique<Unions>()) {}
+MergeMemo::~MergeMemo() = default;
+size_t MergeMemo::size() const
+{
+	std::lock_guard<std::mutex> lock(unions->mutex);
+	return unions->by_key.size();
+}
+
 std::vector<LeafContact> neighbouring_leaves(const Decomposition& D)
 {
 	std::vector<LeafContact> out;
@@ -422,9 +515,10 @@ std::vector<LeafContact> neighbouring_leaves(const Decomposition& D)
 	return out;
 }
 
-int merge_parts(Decomposition& D, double tau, const std::function<bool(int, const char*)>& progress, double seconds)
+int merge_parts(Decomposition& D, double tau, const std::function<bool(int, const char*)>& progress, double seconds,
+                MergeMemo* memo)
 {
-	return Merger(D, tau, progress, seconds).run();
+	return Merger(D, tau, progress, seconds, memo).run();
 }
 
 } // namespace acd

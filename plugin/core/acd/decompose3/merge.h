@@ -6,6 +6,7 @@
 #include "acd/decompose3/decompose.h"
 
 #include <functional>
+#include <memory>
 
 namespace acd {
 
@@ -17,8 +18,21 @@ namespace acd {
 // whose `merged` lists the leaves it unites, and those leaves point to it with `part`. Leaves over
 // tau (uncut) are never merged. With `seconds` > 0 merging stops once that long has passed (the parts
 // stay a certified partition; D.merge_time_limit_reached says so). Returns the number of merges.
+//
+// `memo`, when given, keeps every union measured, keyed by the two parts' contents and the cuts along
+// and between them, and reuses them: two merges over cut trees of one solid that share their first cuts
+// (cut_search's two searches) measure each shared union once. The parts are the same with or without.
+class MergeMemo
+{
+public:
+	MergeMemo();
+	~MergeMemo();
+	size_t size() const;   // unions measured and kept
+	struct Unions;
+	std::unique_ptr<Unions> unions;
+};
 int merge_parts(Decomposition& D, double tau, const std::function<bool(int, const char*)>& progress = {},
-                double seconds = 0);
+                double seconds = 0, MergeMemo* memo = nullptr);
 
 // Neighbouring leaves (node ids a < b): on the two sides of the cut at node `cut`, their caps on its
 // plane overlapping with positive area.

@@ -79,8 +79,9 @@ bool split_solids(const TriMesh& mesh, const TriMesh& first, std::array<TriMesh,
 class ProxySearch
 {
 public:
-	ProxySearch(const DecomposeOptions& o, const ProxySettings& ps)
-	    : o(o), ps(ps), keep(o.hole_handling == HoleHandling::KeepCavities), start(std::chrono::steady_clock::now())
+	ProxySearch(const DecomposeOptions& o, const ProxySettings& ps, MergeMemo* memo)
+	    : o(o), ps(ps), memo(memo), keep(o.hole_handling == HoleHandling::KeepCavities),
+	      start(std::chrono::steady_clock::now())
 	{
 	}
 
@@ -101,6 +102,7 @@ public:
 private:
 	const DecomposeOptions&                     o;
 	const ProxySettings&                        ps;
+	MergeMemo* const                            memo;   // unions an earlier search measured (or none)
 	const bool                                  keep;
 	const std::chrono::steady_clock::time_point start;
 	Decomposition                               D;
@@ -145,7 +147,7 @@ private:
 			if (e.code != Error::OpenPart) throw;
 			return search_as_is(at, merge);
 		}
-		if (merge) merge_parts(P, o.tau, o.progress, left());
+		if (merge) merge_parts(P, o.tau, o.progress, left(), memo);
 		absorb(P);
 		std::vector<int>   leaves;
 		std::map<int, int> reached;   // the proxy's leaves the replay reached: their nodes in D
@@ -251,7 +253,7 @@ private:
 		DecomposeOptions eo   = o;
 		eo.time_limit_seconds = left();
 		Decomposition sub     = cut_tree(s, eo);
-		if (merge) merge_parts(sub, o.tau, o.progress, left());
+		if (merge) merge_parts(sub, o.tau, o.progress, left(), memo);
 		return sub;
 	}
 
@@ -360,9 +362,9 @@ private:
 
 } // namespace
 
-Decomposition search(const Solid& solid, const DecomposeOptions& o, const ProxySettings& ps)
+Decomposition search(const Solid& solid, const DecomposeOptions& o, const ProxySettings& ps, MergeMemo* memo)
 {
-	return ProxySearch(o, ps).run(solid);
+	return ProxySearch(o, ps, memo).run(solid);
 }
 
 } // namespace acd

@@ -19,8 +19,12 @@ struct ProxySettings
 	int    levels = 3;       // proxies tried before a part is searched as it is
 };
 
+class MergeMemo;
+
 // The cut tree and (options.merge_parts) the merged parts of a solid centred and at unit size; on a
-// proxy when it has more than settings.above faces and no max_parts bound, else on the solid.
-Decomposition search(const Solid& solid, const DecomposeOptions& options, const ProxySettings& settings = {});
+// proxy when it has more than settings.above faces and no max_parts bound, else on the solid. `memo`:
+// unions an earlier search of the solid measured (merge.h).
+Decomposition search(const Solid& solid, const DecomposeOptions& options, const ProxySettings& settings = {},
+                     MergeMemo* memo = nullptr);
 
 } // namespace acd
