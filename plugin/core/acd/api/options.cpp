@@ -59,7 +59,7 @@ std::vector<Option> make_table()
 		 "After the cuts, merge parts that share a cut face while their union stays within tau (by the same measure "
 		 "as the cuts, hull distance included), the least concave union first: fewer parts, still an exact "
 		 "partition. Off: the cut tree's leaves as they are.", {}},
-		{"cut_search", O::Choice, (int) CutSearch::Fast, "Cut search", "How hard the search for cuts looks.",
+		{"cut_search", O::Choice, (int) CutSearch::Thorough, "Cut search", "How hard the search for cuts looks.",
 		 cut_searches()},
 		{"output_hulls", O::Flag, 0, "Also add part hulls",
 		 "Add the convex hull of each part as a layer too (named acd_hull_<path>).", {}},

@@ -39,7 +39,7 @@ struct DecomposeOptions
 	double            time_limit_seconds = 0; // 0 = none; bounds the cuts and the merge after them
 	bool              merge_parts = true;     // merge neighbouring parts while their union is tau-convex (merge.h)
 	int               threads = 0;            // threads the decomposition may use (0: every core); the parts do not depend on it
-	CutSearch         cut_search = CutSearch::Fast;
+	CutSearch         cut_search = CutSearch::Thorough;
 	PickRule          pick_rule = PickRule::WorseHalf;   // one search's rule (set by cut_search's searches)
 	// Called with a percentage and a short status; return false to cancel (throws Error(Cancelled)).
 	std::function<bool(int, const char*)> progress;
