@@ -300,7 +300,7 @@ FilterACD::decompose(const RichParameterList& par, MeshDocument& md, vcg::CallBa
 		{"wrap_skin", run.prepared.skin},       // the input encloses no solid: the wrap is a skin about it
 		{"wrap_cap_share", run.prepared.cap_share},   // share of that level set spanning openings
 		{"preprocessing_time", run.prepared.seconds},
-		{"solid_to_input", run.prepared.to_input},     // model units, measured at the solid's vertices
+		{"solid_to_input", run.prepared.to_input},     // model units, sampled on the solid's faces
 		{"input_to_solid", run.prepared.from_input},   // and at the input's
 		{"not_as_given_code", run.prepared.reason_code},   // why not as given: acd::Error::Code (0: it was)
 		{"not_as_given_count", (int) run.prepared.reason_count},
