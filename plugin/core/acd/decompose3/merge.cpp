@@ -325,19 +325,21 @@ private:
 	// The union of groups a and b if it passes the certificate; from the memo when it was measured.
 	std::optional<Group> unite(int a, int b) const
 	{
-		if (!memo) return measure_union(a, b);
-		const std::uint64_t                cuts[2] = {planes_hash(contact_planes(a, b)), planes_hash(separating(merged_leaves(a, b)))};
+		const std::vector<Plane> planes = contact_planes(a, b);
+		const std::vector<int>   leaves = merged_leaves(a, b);
+		if (!memo) return measure_union(a, b, planes, leaves);
+		const std::uint64_t                cuts[2] = {planes_hash(planes), planes_hash(separating(leaves))};
 		const std::array<std::uint64_t, 3> key     = {groups[a].content, groups[b].content, mix(0, cuts, sizeof cuts)};
 		{
 			std::lock_guard<std::mutex> lock(memo->unions->mutex);
 			const auto                  it = memo->unions->by_key.find(key);
 			if (it != memo->unions->by_key.end()) {
 				std::optional<Group> g = it->second;
-				if (g) g->leaves = merged_leaves(a, b);
+				if (g) g->leaves = leaves;
 				return g;
 			}
 		}
-		std::optional<Group> g = measure_union(a, b);
+		std::optional<Group> g = measure_union(a, b, planes, leaves);
 		std::lock_guard<std::mutex> lock(memo->unions->mutex);
 		std::optional<Group>&       kept = memo->unions->by_key[key];
 		kept                             = g;
@@ -345,7 +347,8 @@ private:
 		return g;
 	}
 
-	std::optional<Group> measure_union(int a, int b) const
+	// `planes`: the cuts they touch along (contact_planes); `leaves`: both groups' (merged_leaves).
+	std::optional<Group> measure_union(int a, int b, const std::vector<Plane>& planes, std::vector<int> leaves) const
 	{
 		const Group &A = groups[a], &B = groups[b];
 		// Outside both parts the distance to their union is the distance to the nearer part, so the
@@ -361,8 +364,7 @@ private:
 		const ConvexHull h(corners);
 		if (hull_reach(both, h, std::vector<char>(h.facets(), 1), bar(), 0.1 * tau, 1e9, kPrefilterEvaluations).lower > bar())
 			return std::nullopt;
-		const std::vector<Plane> planes = contact_planes(a, b);
-		Solid                    s;
+		Solid s;
 		try {
 			s = make_solid(glue(PA.mesh, PB.mesh, planes, eps));
 		}
@@ -371,8 +373,7 @@ private:
 		}
 		// No fold of its own: the union crosses itself no more than its parts did (a part cut from a
 		// surface that nearly touches itself may carry such crossings from the cuts).
-		std::vector<int> leaves = merged_leaves(a, b);
-		const long       crossings = crossings_off_seams(s, separating(leaves));
+		const long crossings = crossings_off_seams(s, separating(leaves));
 		if (s.shells != 1 || s.cavities > 0 || (crossings > 0 && crossings > own_crossings(A) + own_crossings(B)))
 			return std::nullopt;
 		if (std::abs(s.volume - PA.volume - PB.volume) > 1e-6 * (PA.volume + PB.volume)) return std::nullopt;
