@@ -16,7 +16,7 @@ namespace {
 // Per-vertex state lives in arrays reused across searches; a stamp tells this search's entries.
 struct PathSearch
 {
-	std::vector<double> g;
+	std::vector<double> g, h;   // h: the heuristic, computed once per vertex and search
 	std::vector<int>    from, stamp;
 	int                 round = 0;
 	using Item = std::pair<double, int>;
@@ -27,6 +27,7 @@ struct PathSearch
 	{
 		if ((int) g.size() == nv) return;
 		g.assign(nv, 0);
+		h.assign(nv, 0);
 		from.assign(nv, 0);
 		stamp.assign(nv, 0);
 	}
@@ -42,27 +43,31 @@ struct PathSearch
             std::push_heap(heap.begin(), heap.end(), std::greater<Item>());
 		};
 		g[p]     = 0;
+		h[p]     = (m.V[p] - goal).norm();
 		stamp[p] = round;
-		push((m.V[p] - goal).norm(), p);
+		push(h[p], p);
 		bool found = false;
 		while (!heap.empty()) {
 			std::pop_heap(heap.begin(), heap.end(), std::greater<Item>());
 			auto [f, v] = heap.back();
 			heap.pop_back();
 			const double gv = g[v];
-			if (f > gv + (m.V[v] - goal).norm() + 1e-300) continue;   // stale entry
+			if (f > gv + h[v] + 1e-300) continue;   // stale entry
 			if (v == q) {
 				found = true;
 				break;
 			}
+			const Vec3& x = m.V[v];
 			t.for_each_neighbour(v, [&](int w) {
-				const double gw = gv + (m.V[w] - m.V[v]).norm();
-				if (stamp[w] != round || gw < g[w]) {
+				const double gw = gv + (m.V[w] - x).norm();
+				if (stamp[w] != round) {
 					stamp[w] = round;
-					g[w]     = gw;
-					from[w]  = v;
-					push(gw + (m.V[w] - goal).norm(), w);
+					h[w]     = (m.V[w] - goal).norm();
 				}
+				else if (!(gw < g[w])) return;
+				g[w]    = gw;
+				from[w] = v;
+				push(gw + h[w], w);
 			});
 		}
 		if (!found) return false;

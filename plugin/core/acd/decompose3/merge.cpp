@@ -127,6 +127,20 @@ std::uint64_t planes_hash(const std::vector<Plane>& planes)
 	return h;
 }
 
+// The ends of the solid's reflex edges, each once.
+std::vector<Vec3> notch_points(const TriMesh& m, const Topology& topo)
+{
+	std::vector<int> ends;
+	for (int f = 0; f < (int) m.F.size(); ++f)
+		for (int k = 0; k < 3; ++k)
+			if (topo.neighbour[f][k] > f && is_reflex(m, topo, f, k)) ends.insert(ends.end(), {m.F[f][k], m.F[f][(k + 1) % 3]});
+	std::sort(ends.begin(), ends.end());
+	ends.erase(std::unique(ends.begin(), ends.end()), ends.end());
+	std::vector<Vec3> out;
+	for (int v : ends) out.push_back(m.V[v]);
+	return out;
+}
+
 // A part while merging: the leaves it unites, its solid and its measures.
 struct Group
 {
@@ -134,6 +148,7 @@ struct Group
 	std::uint64_t     content = 0;   // its solid's vertices and faces, hashed (MergeMemo's key)
 	Node              part;      // its solid and measures, as the merged part's node will hold them
 	std::vector<Vec3> extreme;   // the vertices of its hull
+	std::vector<Vec3> notches;   // the ends of its reflex edges
 	long              crossings = -1;  // faces crossing away from the cuts between its leaves (-1: not counted)
 	bool              alive = true;
 };
@@ -229,7 +244,9 @@ private:
 			groups.push_back(std::move(g));
 		}
 		parallel_for(groups.size(), [&](size_t i) {
-			if (groups[i].alive) groups[i].extreme = extreme_points(groups[i].part.mesh.V);
+			if (!groups[i].alive) return;
+			groups[i].extreme = extreme_points(groups[i].part.mesh.V);
+			groups[i].notches = notch_points(groups[i].part.mesh, Topology(groups[i].part.mesh));
 		});
 	}
 
@@ -362,6 +379,7 @@ private:
 		std::vector<Vec3> corners = A.extreme;
 		corners.insert(corners.end(), B.extreme.begin(), B.extreme.end());
 		const ConvexHull h(corners);
+		if (notch_bound(A, B, h, planes, tau) > tau + 1e-6 * extent(h.points)) return std::nullopt;
 		if (hull_reach(both, h, std::vector<char>(h.facets(), 1), bar(), 0.1 * tau, 1e9, kPrefilterEvaluations).lower > bar())
 			return std::nullopt;
 		Solid s;
@@ -389,12 +407,34 @@ private:
 		n.notch_count         = rep.notches;
 		if (rep.max_vertex >= 0) n.notch = s.mesh.V[rep.max_vertex];
 		if (!certified(n, tau)) return std::nullopt;
+		g.notches   = notch_points(s.mesh, topo);
 		n.mesh      = std::move(s.mesh);
 		g.extreme   = extreme_points(corners);
 		g.crossings = crossings;
 		g.leaves    = std::move(leaves);
 		g.content   = memo ? content_hash(n.mesh) : 0;
 		return g;
+	}
+
+	// A lower bound of the union's concavity from its parts' notches: a notch away from the cuts they
+	// are glued along keeps its faces in the union, and its concavity there (its distance to a bridge
+	// of the union's hull) is at least its distance to that hull's boundary. Stops once over `tau`.
+	static double notch_bound(const Group& A, const Group& B, const ConvexHull& h, const std::vector<Plane>& planes, double tau)
+	{
+		const double seam = 1e-6 * extent(h.points);
+		double       lb   = 0;
+		for (const Group* G : {&A, &B})
+			for (const Vec3& x : G->notches) {
+				bool off = true;
+				for (const Plane& pl : planes) off &= std::abs(pl.eval(x)) > seam;
+				if (!off) continue;
+				double d = INFINITY;
+				for (const Plane& pl : h.facet_plane)
+					if ((d = std::min(d, std::max(0.0, -pl.eval(x)))) <= lb) break;
+				lb = std::max(lb, d);
+				if (lb > tau) return lb;
+			}
+		return lb;
 	}
 
 	// True once the time limit has passed: merging stops there (what is merged stays merged).
