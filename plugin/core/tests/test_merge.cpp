@@ -189,3 +189,19 @@ TEST_CASE("merge: a memo measures each union once and gives the same parts")
 	}
 	CHECK(plain.merges > 0);
 }
+
+TEST_CASE("crossings where parts touch across a cut are no fold; elsewhere they count")
+{
+	// Two boxes touching on the plane x = 0: their faces there overlap (crossings), on either side of it.
+	TriMesh two = shapes::box({-1, 0, 0}, {0, 1, 1});
+	append(two, shapes::box({0, 0.25, 0.25}, {1, 0.75, 0.75}));
+	const Solid s = make_solid(two);
+	REQUIRE(s.self_intersections > 0);
+	Plane at0;
+	at0.n = Vec3::UnitX(), at0.d = 0;
+	CHECK(crossings_off_cuts(s, {at0}, 1e-9) == 0);
+	Plane elsewhere = at0;
+	elsewhere.d     = 0.5;
+	CHECK(crossings_off_cuts(s, {elsewhere}, 1e-9) == s.self_intersections);
+	CHECK(crossings_off_cuts(s, {}, 1e-9) == s.self_intersections);
+}

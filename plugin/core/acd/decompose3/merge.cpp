@@ -282,33 +282,6 @@ private:
 		return planes;
 	}
 
-	// Faces of a solid crossing each other, but for those that a cut between its leaves separates:
-	// leaves on either side of a plane only touch there (their rims met a rounding error apart, or
-	// they meet along an edge), which is no fold.
-	long crossings_off_seams(const Solid& s, const std::vector<Plane>& planes) const
-	{
-		if (s.self_intersections == 0) return 0;
-		const auto side = [&](const Tri& t, const Plane& pl) {
-			double lo = INFINITY, hi = -INFINITY;
-			for (int v : t) lo = std::min(lo, pl.eval(s.mesh.V[v])), hi = std::max(hi, pl.eval(s.mesh.V[v]));
-			if (hi <= eps && lo >= -eps) {   // a face in the plane: on its solid's side
-				const Vec3& A = s.mesh.V[t[0]];
-				return pl.n.dot((s.mesh.V[t[1]] - A).cross(s.mesh.V[t[2]] - A)) > 0 ? -1 : 1;
-			}
-			return hi <= eps ? -1 : lo >= -eps ? 1 : 0;
-		};
-		long n = 0;
-		for (const auto& [f, g] : self_crossings(s.mesh, bbox_diagonal(s.mesh.V))) {
-			bool apart = false;
-			for (const Plane& pl : planes) {
-				const int a = side(s.mesh.F[f], pl), b = side(s.mesh.F[g], pl);
-				apart |= a != 0 && b != 0 && a != b;
-			}
-			n += !apart;
-		}
-		return n;
-	}
-
 	// A group's own crossings: a merged group's were counted when it was made, a leaf's only when a
 	// union with it crosses itself (rarely), not for every leaf up front.
 	static long own_crossings(const Group& g)
@@ -391,7 +364,7 @@ private:
 		}
 		// No fold of its own: the union crosses itself no more than its parts did (a part cut from a
 		// surface that nearly touches itself may carry such crossings from the cuts).
-		const long crossings = crossings_off_seams(s, separating(leaves));
+		const long crossings = crossings_off_cuts(s, separating(leaves), eps);
 		if (s.shells != 1 || s.cavities > 0 || (crossings > 0 && crossings > own_crossings(A) + own_crossings(B)))
 			return std::nullopt;
 		if (std::abs(s.volume - PA.volume - PB.volume) > 1e-6 * (PA.volume + PB.volume)) return std::nullopt;

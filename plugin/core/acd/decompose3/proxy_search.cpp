@@ -177,17 +177,46 @@ private:
 				if (reached.count(l)) g.push_back(reached.at(l));
 			if (g.size() > 1 && g.size() == P.nodes[p].merged.size()) groups.push_back(std::move(g));
 		}
-		std::vector<std::optional<Node>> unions(groups.size());
-		parallel_for(groups.size(), [&](size_t i) { unions[i] = united(groups[i]); });
+		std::vector<std::vector<Node>> unions(groups.size());
+		parallel_for(groups.size(), [&](size_t i) { unions[i] = united_pieces(groups[i]); });
 		std::vector<char> took(D.nodes.size(), 0);
-		for (size_t i = 0; i < groups.size(); ++i) {
-			if (!unions[i]) continue;
-			const int id = (int) D.nodes.size();
-			for (int l : groups[i]) took[l] = 1, D.nodes[l].part = id;
-			D.merges += (int) groups[i].size() - 1;
-			D.nodes.push_back(std::move(*unions[i]));
-		}
+		for (std::vector<Node>& pieces : unions)
+			for (Node& n : pieces) {
+				const int id = (int) D.nodes.size();
+				for (int l : n.merged) took[l] = 1, D.nodes[l].part = id;
+				D.merges += (int) n.merged.size() - 1;
+				D.nodes.push_back(std::move(n));
+			}
 		return took;
+	}
+
+	// A proxy's merged part on the solid: its leaves united whole if that passes, else in pieces, two
+	// pieces at a time (in path order) while their union passes; the merged parts made.
+	std::vector<Node> united_pieces(const std::vector<int>& leaves) const
+	{
+		if (std::optional<Node> whole = united(leaves)) return {std::move(*whole)};
+		std::vector<std::vector<int>>    pieces;
+		std::vector<std::optional<Node>> made;
+		for (int l : leaves) pieces.push_back({l}), made.emplace_back();
+		for (bool grown = leaves.size() > 2; grown;) {
+			grown = false;
+			for (size_t i = 0; i < pieces.size() && !grown; ++i)
+				for (size_t j = i + 1; j < pieces.size() && !grown; ++j) {
+					if (pieces[i].size() + pieces[j].size() == leaves.size()) continue;   // the whole, refused
+					std::vector<int> both;
+					std::merge(pieces[i].begin(), pieces[i].end(), pieces[j].begin(), pieces[j].end(), std::back_inserter(both),
+					           [&](int a, int b) { return D.nodes[a].path < D.nodes[b].path; });
+					if (std::optional<Node> n = united(both)) {
+						pieces[i] = std::move(both), made[i] = std::move(n);
+						pieces.erase(pieces.begin() + j), made.erase(made.begin() + j);
+						grown = true;
+					}
+				}
+		}
+		std::vector<Node> out;
+		for (std::optional<Node>& n : made)
+			if (n) out.push_back(std::move(*n));
+		return out;
 	}
 
 	// The cut between two leaves: their deepest common node.
@@ -208,13 +237,15 @@ private:
 		const double eps = 1e-9 * extent(D.nodes[0].mesh.V);
 		TriMesh      u   = D.nodes[leaves[0]].mesh;
 		double       volume = D.nodes[leaves[0]].volume;
+		std::vector<Plane> cuts;   // every cut between the leaves
+		const auto         add = [](std::vector<Plane>& to, const Plane& pl) {
+            if (std::none_of(to.begin(), to.end(), [&](const Plane& p) { return p.n == pl.n && p.d == pl.d; })) to.push_back(pl);
+		};
 		for (size_t k = 1; k < leaves.size(); ++k) {
 			std::vector<Plane> planes;
 			for (size_t j = 0; j < k; ++j) {
 				const Node& c = D.nodes[between(leaves[j], leaves[k])];
-				if (c.has_plane &&
-				    std::none_of(planes.begin(), planes.end(), [&](const Plane& p) { return p.n == c.plane.n && p.d == c.plane.d; }))
-					planes.push_back(c.plane);
+				if (c.has_plane) add(planes, c.plane), add(cuts, c.plane);
 			}
 			u = glue(u, D.nodes[leaves[k]].mesh, planes, eps);
 			volume += D.nodes[leaves[k]].volume;
@@ -222,8 +253,14 @@ private:
 		Node n;
 		try {
 			Solid s = make_solid(u);
-			if (s.shells != 1 || s.cavities > 0 || s.self_intersections > 0 || std::abs(s.volume - volume) > 1e-6 * volume)
-				return std::nullopt;
+			if (s.shells != 1 || s.cavities > 0 || std::abs(s.volume - volume) > 1e-6 * volume) return std::nullopt;
+			// No fold of its own, as in the merge: crossings where leaves touch across a cut are none,
+			// and the rest no more than the leaves carried from the cuts.
+			if (const long crossings = crossings_off_cuts(s, cuts, eps); crossings > 0) {
+				long own = 0;
+				for (int l : leaves) own += (long) self_crossings(D.nodes[l].mesh, bbox_diagonal(D.nodes[l].mesh.V)).size();
+				if (crossings > own) return std::nullopt;
+			}
 			n.mesh = std::move(s.mesh);
 		}
 		catch (const Error&) {

@@ -288,4 +288,28 @@ Solid make_solid(const TriMesh& in)
 	return s;
 }
 
+long crossings_off_cuts(const Solid& s, const std::vector<Plane>& cuts, double eps)
+{
+	if (s.self_intersections == 0) return 0;
+	const auto side = [&](const Tri& t, const Plane& pl) {
+		double lo = INFINITY, hi = -INFINITY;
+		for (int v : t) lo = std::min(lo, pl.eval(s.mesh.V[v])), hi = std::max(hi, pl.eval(s.mesh.V[v]));
+		if (hi <= eps && lo >= -eps) {   // a face in the plane: on its solid's side
+			const Vec3& A = s.mesh.V[t[0]];
+			return pl.n.dot((s.mesh.V[t[1]] - A).cross(s.mesh.V[t[2]] - A)) > 0 ? -1 : 1;
+		}
+		return hi <= eps ? -1 : lo >= -eps ? 1 : 0;
+	};
+	long n = 0;
+	for (const auto& [f, g] : self_crossings(s.mesh, bbox_diagonal(s.mesh.V))) {
+		bool apart = false;
+		for (const Plane& pl : cuts) {
+			const int a = side(s.mesh.F[f], pl), b = side(s.mesh.F[g], pl);
+			apart |= a != 0 && b != 0 && a != b;
+		}
+		n += !apart;
+	}
+	return n;
+}
+
 } // namespace acd
