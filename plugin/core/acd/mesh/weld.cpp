@@ -17,8 +17,13 @@ TriMesh weld(const TriMesh& in, double eps, int* merged)
 			return std::hash<long long>()(c[0] * 73856093LL ^ c[1] * 19349663LL ^ c[2] * 83492791LL);
 		}
 	};
-	std::unordered_map<std::array<long long, 3>, std::vector<int>, CellHash> grid;
+	// Each cell's kept vertices in the order they were kept: a chain through `next`, (first, last) by cell.
+	std::unordered_map<std::array<long long, 3>, std::pair<int, int>, CellHash> grid;
+	grid.reserve(in.V.size());
+	std::vector<int> next;
+	next.reserve(in.V.size());
 	TriMesh          out;
+	out.V.reserve(in.V.size());
 	std::vector<int> to(in.V.size(), -1);
 	int              n = 0;
 	for (size_t i = 0; i < in.V.size(); ++i) {
@@ -26,6 +31,7 @@ TriMesh weld(const TriMesh& in, double eps, int* merged)
 		if (!p.allFinite()) {   // kept apart: make_solid names them
 			to[i] = (int) out.V.size();
 			out.V.push_back(p);
+			next.push_back(-1);
 			continue;
 		}
 		const std::array<long long, 3> c{(long long) std::floor(p.x() / eps), (long long) std::floor(p.y() / eps),
@@ -35,13 +41,15 @@ TriMesh weld(const TriMesh& in, double eps, int* merged)
 				for (int dz = -1; dz <= 1 && to[i] < 0; ++dz) {
 					auto it = grid.find({c[0] + dx, c[1] + dy, c[2] + dz});
 					if (it == grid.end()) continue;
-					for (int j : it->second)
+					for (int j = it->second.first; j >= 0; j = next[j])
 						if ((out.V[j] - p).norm() <= eps) { to[i] = j; ++n; break; }
 				}
 		if (to[i] < 0) {
 			to[i] = (int) out.V.size();
-			grid[c].push_back(to[i]);
+			const auto [it, fresh] = grid.try_emplace(c, to[i], to[i]);
+			if (!fresh) next[it->second.second] = to[i], it->second.second = to[i];
 			out.V.push_back(p);
+			next.push_back(-1);
 		}
 	}
 	for (const Tri& t : in.F) {
