@@ -8,7 +8,11 @@
 
 namespace acd {
 
-TriMesh weld(const TriMesh& in, double eps, int* merged)
+namespace {
+
+// The vertices kept (into out.V) and where each input vertex went (`to`): each one merges with the
+// first kept vertex within eps found in the 27 cells around it, else it is kept. Returns the merges.
+int weld_vertices(const TriMesh& in, double eps, TriMesh& out, std::vector<int>& to)
 {
 	struct CellHash
 	{
@@ -22,10 +26,9 @@ TriMesh weld(const TriMesh& in, double eps, int* merged)
 	grid.reserve(in.V.size());
 	std::vector<int> next;
 	next.reserve(in.V.size());
-	TriMesh          out;
 	out.V.reserve(in.V.size());
-	std::vector<int> to(in.V.size(), -1);
-	int              n = 0;
+	to.assign(in.V.size(), -1);
+	int n = 0;
 	for (size_t i = 0; i < in.V.size(); ++i) {
 		const Vec3& p = in.V[i];
 		if (!p.allFinite()) {   // kept apart: make_solid names them
@@ -52,6 +55,16 @@ TriMesh weld(const TriMesh& in, double eps, int* merged)
 			next.push_back(-1);
 		}
 	}
+	return n;
+}
+
+} // namespace
+
+TriMesh weld(const TriMesh& in, double eps, int* merged)
+{
+	TriMesh          out;
+	std::vector<int> to;
+	const int        n = weld_vertices(in, eps, out, to);
 	for (const Tri& t : in.F) {
 		bool ok = true;
 		for (int v : t) ok = ok && v >= 0 && v < (int) in.V.size();
