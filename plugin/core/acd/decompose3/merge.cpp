@@ -352,7 +352,7 @@ private:
 		std::vector<Vec3> corners = A.extreme;
 		corners.insert(corners.end(), B.extreme.begin(), B.extreme.end());
 		const ConvexHull h(corners);
-		if (notch_bound(A, B, h, planes, tau) > tau + 1e-6 * extent(h.points)) return std::nullopt;
+		if (notch_deeper_than_tau(A, B, h, planes)) return std::nullopt;
 		if (hull_reach(both, h, std::vector<char>(h.facets(), 1), bar(), 0.1 * tau, 1e9, kPrefilterEvaluations).lower > bar())
 			return std::nullopt;
 		Solid s;
@@ -391,11 +391,11 @@ private:
 
 	// A lower bound of the union's concavity from its parts' notches: a notch away from the cuts they
 	// are glued along keeps its faces in the union, and its concavity there (its distance to a bridge
-	// of the union's hull) is at least its distance to that hull's boundary. Stops once over `tau`.
-	static double notch_bound(const Group& A, const Group& B, const ConvexHull& h, const std::vector<Plane>& planes, double tau)
+	// of the union's hull) is at least its distance to that hull's boundary. True once one lies deeper
+	// than tau (and the hull's rounding: the union's own hull is built from its own vertices).
+	bool notch_deeper_than_tau(const Group& A, const Group& B, const ConvexHull& h, const std::vector<Plane>& planes) const
 	{
-		const double seam = 1e-6 * extent(h.points);
-		double       lb   = 0;
+		const double size = extent(h.points), seam = 1e-6 * size, deep = tau + 1e-6 * size;
 		for (const Group* G : {&A, &B})
 			for (const Vec3& x : G->notches) {
 				bool off = true;
@@ -403,11 +403,10 @@ private:
 				if (!off) continue;
 				double d = INFINITY;
 				for (const Plane& pl : h.facet_plane)
-					if ((d = std::min(d, std::max(0.0, -pl.eval(x)))) <= lb) break;
-				lb = std::max(lb, d);
-				if (lb > tau) return lb;
+					if ((d = std::min(d, std::max(0.0, -pl.eval(x)))) <= deep) break;
+				if (d > deep) return true;
 			}
-		return lb;
+		return false;
 	}
 
 	// True once the time limit has passed: merging stops there (what is merged stays merged).
