@@ -133,6 +133,8 @@ def prep(r):
     if r.get("preprocessing_done") == 2:
         how = "capped" if r.get("wrap_capped") else "skin" if r.get("wrap_skin") else "wrapped"
         return f"wrap {r['wrap_alpha_used']:.3g}%, {how}"
+    if r.get("preprocessing_done") == 3:
+        return f"{r.get('holes_filled')} holes filled"
     return ("as given", "welded")[r.get("preprocessing_done", 0)]
 
 

@@ -135,12 +135,12 @@ def test_the_filter_the_command_line_and_the_api_share_their_defaults(ms, monkey
 
 
 def test_convex_decomposition_decomposes_an_open_mesh_as_the_cli_does(tmp_path):
-    """An open box (one face missing): the API's default preprocessing welds or wraps it, as the CLI's does."""
+    """An open box (one face missing): the API's default preprocessing fills its hole, as the CLI's does."""
     import trimesh
     box = trimesh.creation.box((2, 1, 1))
     V, F = np.asarray(box.vertices), np.asarray(box.faces)[1:]
     hulls, parts, res = pymeshlab_acd.convex_decomposition(V, F, return_parts=True)
-    assert res["alpha_wrapped"] and res["preprocessing_done"] == 2
+    assert not res["alpha_wrapped"] and res["preprocessing_done"] == 3 and res["holes_filled"] == 1
     assert len(hulls) >= 1 and res["tau_convex"]
     # the hulls cover the input: every input vertex lies inside or on some hull (scipy, not the core)
     from scipy.spatial import Delaunay

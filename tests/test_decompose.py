@@ -199,10 +199,10 @@ def test_disjoint_solids_are_decomposed_each(ms):
     assert root["solids"] and "plane" not in root
 
 
-def test_auto_preprocessing_keeps_a_valid_solid_and_wraps_a_holed_sphere_solid(ms):
+def test_auto_preprocessing_keeps_a_valid_solid_and_fills_a_holed_sphere(ms):
     """auto: a valid solid is decomposed as given; a triangle soup of it is welded; a sphere with a hole
-    too wide for the first alpha is wrapped at that alpha together with the cap its winding number puts
-    across the hole, rather than decomposed as the thin skin a plain wrap makes."""
+    too wide for the first alpha has its hole filled and faired, rather than decomposed as the thin skin
+    a plain wrap makes."""
     V, F = extrude(L_SHAPE, 0, 1)
     add_mesh(ms, V, F)
     res, ids = pymeshlab_acd.decompose(ms, tau=0.2, tau_unit="model_units", preprocessing="auto", with_tree=False)
@@ -228,9 +228,12 @@ def test_auto_preprocessing_keeps_a_valid_solid_and_wraps_a_holed_sphere_solid(m
     assert volume(skin.vertex_matrix(), skin.face_matrix()) < 0.2 * ball
     holed.set_current_mesh(0)
     res, ids = pymeshlab_acd.decompose(holed, tau=10.0, preprocessing="auto", with_tree=False)
-    assert res["alpha_wrapped"] and res["wrap_capped"] and res["wrap_alpha_used"] == DEFAULTS["wrap_alpha"]
+    assert not res["alpha_wrapped"] and res["holes_filled"] == 1 and res["wrap_alpha_used"] == 0
     volumes = {"auto": sum(volume(holed.mesh(i).vertex_matrix(), holed.mesh(i).face_matrix()) for i in ids)}
-    assert volumes["auto"] > 0.95 * ball, volumes          # auto's wrap is the filled ball
+    assert volumes["auto"] > 0.95 * ball, volumes          # auto's solid is the filled ball
+    # the patch continues the sphere: no part's vertex lies off the unit sphere by more than a flat film would
+    radius = np.concatenate([np.linalg.norm(holed.mesh(i).vertex_matrix(), axis=1) for i in ids])
+    assert radius.max() < 1.01 and radius.min() > 1 - 0.5 * (1 - np.sqrt(1 - 0.225 ** 2)), radius.min()
 
 
 @pytest.mark.parametrize("dirt", ["open", "overlapping_copy", "point_cloud"])

@@ -1,5 +1,6 @@
-"""preprocessing=auto on open meshes: holes of any size close along the surface (the input's winding
-number), not by a blob and not as a hollow skin; a sheet stays a skin.
+"""preprocessing=auto on open meshes: holes of any size close along the surface (filled and faired where
+that makes a solid, else the input's winding number caps them for the wrap), not by a blob and not as a
+hollow skin; a sheet stays a skin.
 
 Open meshes are made here from closed solids (a shared scan and two CAD solids with 1, 3 and 10 holes of
 growing size, a triangle soup, a patch turned against its neighbours). Re-measured against the *closed*
@@ -33,7 +34,7 @@ def decompose(V, F):
 def check_solid_within(hulls, res, V, F):
     """The hulls hold the closed solid and reach beyond it by at most tau plus the reported distance."""
     rng = np.random.default_rng(0)
-    assert res["alpha_wrapped"] and not res["wrap_skin"]   # capped where the plain wrap slipped inside
+    assert not res["wrap_skin"] and (res["holes_filled"] > 0) != res["alpha_wrapped"]   # filled, or else wrapped
     assert covered(hulls, V, F, rng) > 0.97
     reach = reach_beyond(hulls, V, F, rng)
     assert reach <= res["tau_model_units"] + res["solid_to_input"] + 0.002 * diagonal(V), (reach, res)
@@ -50,7 +51,9 @@ def test_holes_of_growing_size_close_along_the_surface(name, holes):
     assert len(OF) < len(F)
     hulls, res = decompose(OV, OF)
     check_solid_within(hulls, res, V, F)
-    assert res["wrap_capped"] or holes == 1   # holes up to 8% of the diagonal: a plain wrap slips inside
+    # every hole filled (a hole across a thin rib opens on both sides), or capped for the wrap: holes up to
+    # 8% of the diagonal, through which a plain wrap slips inside
+    assert res["holes_filled"] >= holes or res["wrap_capped"] or holes == 1, res
     # the caps lie across the holes, no farther from the input than the largest hole's radius
     assert res["solid_to_input"] <= (0.08 if holes > 1 else 0.02) * diagonal(V) + res["tau_model_units"]
     assert res["preprocessing_time"] > 0
@@ -63,7 +66,7 @@ def test_a_soup_and_a_flipped_patch_still_enclose_their_solid(dirt):
     OV, OF = soup(OV, OF) if dirt == "soup" else flipped_patch(OV, OF)
     hulls, res = decompose(OV, OF)
     check_solid_within(hulls, res, V, F)
-    assert res["wrap_capped"]
+    assert res["holes_filled"] >= 3 or res["wrap_capped"]
 
 
 def test_a_sheet_stays_a_skin():

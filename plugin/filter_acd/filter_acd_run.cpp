@@ -193,7 +193,7 @@ FilterACD::Run FilterACD::runDecomposition(const RichParameterList& par, MeshMod
 		                      .arg(avail / 1e6, 0, 'f', 0));
 	const acd::PrepareOptions prep = acdml::prepare_options(par);
 	if (cb && prep.mode != acd::Preprocessing::None)
-		cb(0, prep.mode == acd::Preprocessing::AlphaWrap ? "Alpha wrapping the input..." : "Checking the input (as given, welded or wrapped)...");
+		cb(0, prep.mode == acd::Preprocessing::AlphaWrap ? "Alpha wrapping the input..." : "Checking the input (as given, welded, holes filled or wrapped)...");
 	// tau may be a share of the size: the prepared solid's (the last one prepared is the one decomposed).
 	double                 size = 0;
 	acd::MeshDecomposition md   = acd::decompose_mesh(raw, prep, [&](const acd::PreparedSolid& p) {
@@ -211,6 +211,10 @@ void FilterACD::log_prepared(const acd::PreparedSolid& p)
 	if (p.done == acd::PreparedSolid::Welded)
 		log("Not decomposable as given (%s) Welding %d vertices within 1e-5 of its size made it a valid solid; it is "
 		    "decomposed welded, not wrapped.", p.reason.c_str(), p.welded);
+	if (p.done == acd::PreparedSolid::Filled)
+		log("Not decomposable as given (%s) Its %d holes were filled and faired (the patches continue its surface); "
+		    "it is decomposed filled, not wrapped. The patches reach %g from the input.", p.reason.c_str(), p.filled,
+		    p.to_input);
 	if (p.done == acd::PreparedSolid::Wrapped && !p.reason.empty())
 		log("Not decomposable as given (%s) It is alpha wrapped: %d wrap(s), alpha %g%% kept, holding %.0f%% of the "
 		    "input's interior.", p.reason.c_str(), p.tries, p.alpha / p.size * 100, 100 * p.inside);
@@ -294,7 +298,8 @@ FilterACD::decompose(const RichParameterList& par, MeshDocument& md, vcg::CallBa
 		{"alpha_wrapped", run.prepared.done == acd::PreparedSolid::Wrapped},
 		{"wrap_alpha_used", run.prepared.done == acd::PreparedSolid::Wrapped ? 100 * run.prepared.alpha_share : 0.0},
 		{"welded_vertices", run.prepared.welded},
-		{"preprocessing_done", (int) run.prepared.done},   // 0 as given, 1 welded, 2 alpha wrapped
+		{"preprocessing_done", (int) run.prepared.done},   // 0 as given, 1 welded, 2 alpha wrapped, 3 holes filled
+		{"holes_filled", run.prepared.filled},
 		{"self_crossing_wrapped", !run.fallback.empty()},
 		{"wrap_capped", run.prepared.capped},   // openings closed along the input's winding-number level set
 		{"wrap_skin", run.prepared.skin},       // the input encloses no solid: the wrap is a skin about it

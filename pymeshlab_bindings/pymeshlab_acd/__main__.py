@@ -83,6 +83,9 @@ def cmd_decompose(a):
         print(f"preprocessing    alpha-wrapped at {res['wrap_alpha_used']:.3g}%{how} (the input is not a closed solid); "
               f"the solid reaches {res['solid_to_input']:.4g} from the input, the input {res['input_to_solid']:.4g} "
               f"from it")
+    elif res.get("holes_filled"):
+        print(f"preprocessing    {res['holes_filled']} holes filled and faired (the input is not a closed solid); "
+              f"the patches reach {res['solid_to_input']:.4g} from the input")
     elif res.get("welded_vertices"):
         print(f"preprocessing    {res['welded_vertices']} duplicate vertices welded")
     if a.engine != "none" or res.get("hulls_reduced"):

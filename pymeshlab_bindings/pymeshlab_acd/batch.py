@@ -74,7 +74,7 @@ def decompose_file(src, out_dir, opts):
 
     load()
     t0 = time.perf_counter()
-    # The filter prepares the mesh by the core's one policy (preprocessing auto: as given, welded or
+    # The filter prepares the mesh by the core's one policy (preprocessing auto: as given, welded, holes filled or
     # wrapped, and a solid that crosses itself wrapped when its parts as given fall short of tau).
     filter_opts = {k: opts[k] for k in options.DEFAULTS if k != "threads"}
     cache_dir = cache_folder(opts["cache"], opts["cache_dir"])
@@ -100,7 +100,8 @@ def decompose_file(src, out_dir, opts):
     hull_vol = sum(mass_properties(ms.mesh(i).vertex_matrix(), ms.mesh(i).face_matrix())[0] for i in hulls)
     wrap = f"alpha_wrap {res['wrap_alpha_used']:.3g}%" + (
         ", openings capped" if res.get("wrap_capped") else ", a skin" if res.get("wrap_skin") else "")
-    pre = ("none", f"welded {res['welded_vertices']} vertices", wrap)[res["preprocessing_done"]]
+    pre = ("none", f"welded {res['welded_vertices']} vertices", wrap,
+           f"{res.get('holes_filled', 0)} holes filled")[res["preprocessing_done"]]
     note = ("wrapped: as given, it intersects itself and its parts fell short of tau or a cut opened a part"
             if res["self_crossing_wrapped"] else _not_as_given(res))
     written = export_decomposition(ms, source, parts, hulls, out_dir, name=pathlib.Path(src).stem,
@@ -131,7 +132,8 @@ def _not_as_given(res):
     code = res.get("not_as_given_code", 0)
     if not code or res["preprocessing_done"] == 0:
         return ""
-    return "wrapped: as given, " + NOT_AS_GIVEN[code].format(res["not_as_given_count"]) if code < len(NOT_AS_GIVEN) else ""
+    how = "holes filled" if res["preprocessing_done"] == 3 else "wrapped"
+    return how + ": as given, " + NOT_AS_GIVEN[code].format(res["not_as_given_count"]) if code < len(NOT_AS_GIVEN) else ""
 
 
 def _reason(e):

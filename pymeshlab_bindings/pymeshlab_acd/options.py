@@ -11,7 +11,7 @@ DEFAULTS = dict(
     cut_search="thorough",          # fast (one cut tree, the paper's greedy) | thorough (two, the fewer parts kept)
     max_hull_vertices=0,            # per collision hull; 0: the exact hull
     engine="none",                  # none | mujoco | pybullet | physx | physx_gpu | unity: hulls within its limits
-    preprocessing="auto",           # as given if a valid solid, else welded, else alpha-wrapped
+    preprocessing="auto",           # as given if a valid solid, else welded, else holes filled, else alpha-wrapped
     wrap_alpha=2.0,                 # alpha wrap: alpha, % of the size
     wrap_offset=0.1,                # alpha wrap: offset, % of the size
     time_limit=0.0,                 # seconds in the core; 0: none
@@ -40,8 +40,8 @@ HELP = dict(
     engine="make every collision hull meet this physics engine's limits (PhysX 255 vertices/255 polygons, its GPU "
            "path 64/64, Unity 255 triangles) while still containing its part; the summary says how far the "
            "reduced hulls reach beyond the exact ones",
-    preprocessing="auto: as given if the mesh is a valid solid, else welded, else alpha-wrapped; alpha_wrap: "
-                  "always wrapped; none: refuse what is not a closed solid",
+    preprocessing="auto: as given if the mesh is a valid solid, else welded, else its holes filled, else "
+                  "alpha-wrapped; alpha_wrap: always wrapped; none: refuse what is not a closed solid",
     wrap_alpha="alpha wrap: alpha, %% of the size (larger bridges bigger holes)",
     wrap_offset="alpha wrap: offset, %% of the size",
     time_limit="stop cutting after this many seconds (0: none)",

@@ -7,6 +7,8 @@
 #include "check.h"
 
 #include <cmath>
+#include <map>
+#include <set>
 
 using namespace acd;
 
@@ -82,7 +84,7 @@ TEST_CASE("a sphere with holes is wrapped solid along its own surface, not as a 
 	CHECK(open.F.size() < s.F.size());
 	CHECK(signed_volume(alpha_wrap(open, 0.05, 0.005)) < 0.2 * ball);
 
-	const WrapSolidResult r = wrap_solid(open, 0.05, 0.005, 0.4);
+	const WrapSolidResult r = wrap_solid(open, 0.05, 0.005, 0.4, 0.5, 0.25, /*fill=*/false);
 	CHECK(r.wrapped);
 	CHECK(r.capped);
 	CHECK(!r.skin);
@@ -98,6 +100,66 @@ TEST_CASE("a sphere with holes is wrapped solid along its own surface, not as a 
 	CHECK(r.to_input >= off_unit_sphere(r.mesh) - 0.005);   // the faceted sphere lies within 0.005 of it
 	CHECK(r.to_input < 0.2);   // a cap's middle from the rim: about the hole's radius
 	CHECK(r.from_input < 0.02);
+}
+
+namespace {
+
+const std::vector<Vec3> kHoleDirs = {Vec3(0, 0, 1), Vec3(1, 0, 0), Vec3(0, -1, 0), Vec3(-1, 1, 0), Vec3(0, 1, -1),
+                                     Vec3(1, 1, 1), Vec3(-1, -1, -1), Vec3(1, -1, 0.3), Vec3(-1, 0.2, -1), Vec3(0.3, 1, 1)};
+
+// The unit sphere with `holes` holes, hole k of radius 0.1 + 0.25 k / holes; `sag` the largest rim's sagitta.
+TriMesh holed_sphere(int holes, double& sag)
+{
+	TriMesh open = shapes::sphere(4, 1.0);
+	sag          = 0;
+	for (int k = 0; k < holes; ++k) {
+		const double radius = 0.1 + 0.25 * k / holes;
+		open = punched(open, {kHoleDirs[k]}, radius);
+		sag  = std::max(sag, 1 - std::sqrt(1 - radius * radius));
+	}
+	return open;
+}
+
+// Loops of border edges (edges of one face), counted as the border's connected pieces.
+int border_loops(const TriMesh& m)
+{
+	std::map<std::pair<int, int>, int> uses;
+	for (const Tri& t : m.F)
+		for (int k = 0; k < 3; ++k) ++uses[std::minmax(t[k], t[(k + 1) % 3])];
+	std::vector<int> root(m.V.size());
+	for (size_t i = 0; i < root.size(); ++i) root[i] = (int) i;
+	const auto find = [&](int v) { while (root[v] != v) v = root[v] = root[root[v]]; return v; };
+	std::set<int> on_border;
+	for (const auto& [e, c] : uses)
+		if (c == 1) root[find(e.first)] = find(e.second), on_border.insert(e.first), on_border.insert(e.second);
+	std::set<int> loops;
+	for (int v : on_border) loops.insert(find(v));
+	return (int) loops.size();
+}
+
+} // namespace
+
+TEST_CASE("holes in a sphere are filled and faired along it, the rest kept as it is")
+{
+	// The fill continues the sphere's curvature: its patches lie far nearer the sphere than the flat caps
+	// (about the sagitta inside it), and the input's own faces are the solid's.
+	const double ball = std::abs(signed_volume(shapes::sphere(4, 1.0)));
+	for (int holes : {1, 3, 10}) {
+		CAPTURE(holes);
+		double                sag  = 0;
+		const TriMesh         open = holed_sphere(holes, sag);
+		const WrapSolidResult r    = wrap_solid(open, 0.05, 0.005, 0.4);
+		CHECK(!r.wrapped);
+		CHECK(r.filled == border_loops(open));   // two of ten holes overlap: nine loops
+		CHECK(r.filled >= holes - 1);
+		CHECK(!r.capped);
+		REQUIRE(r.solid);
+		CHECK(r.solid->self_intersections == 0);
+		CHECK(std::abs(signed_volume(r.mesh)) > 0.97 * ball);
+		CHECK(off_unit_sphere(r.mesh) < 0.35 * sag);
+		CHECK(r.to_input >= off_unit_sphere(r.mesh) - 0.005);   // the reported reach, re-measured
+		CHECK(r.from_input < 1e-9);                               // every input vertex is on the solid
+	}
 }
 
 TEST_CASE("one, three and ten holes of growing size close along the sphere")
@@ -116,11 +178,25 @@ TEST_CASE("one, three and ten holes of growing size close along the sphere")
 			sag  = std::max(sag, 1 - std::sqrt(1 - radius * radius));
 		}
 		CAPTURE(holes);
-		const WrapSolidResult r = wrap_solid(open, 0.05, 0.005, 0.4);
+		const WrapSolidResult r = wrap_solid(open, 0.05, 0.005, 0.4, 0.5, 0.25, /*fill=*/false);
 		check_capped(r, ball);
 		// A cap spans its rim like a soap film, nearly flat: about the rim's sagitta inside the sphere.
 		CHECK(off_unit_sphere(r.mesh) > 0.5 * sag);
 	}
+}
+
+TEST_CASE("two holed spheres that cross each other are wrapped, not filled")
+{
+	// Each fills to a closed sphere, but together they cross: no solid, so the caps' wrap takes over.
+	double  sag = 0;
+	TriMesh two = holed_sphere(1, sag);
+	TriMesh b   = two;
+	for (Vec3& v : b.V) v += Vec3(0.8, 0.1, 0.05);
+	append(two, b);
+	const WrapSolidResult r = wrap_solid(two, 0.05, 0.005, 0.4);
+	CHECK(r.wrapped);
+	CHECK(r.filled == 0);
+	CHECK(!r.skin);
 }
 
 TEST_CASE("a flipped patch and a triangle soup still enclose their solid")
@@ -137,7 +213,11 @@ TEST_CASE("a flipped patch and a triangle soup still enclose their solid")
 		soup.F.push_back({n, n + 1, n + 2});
 	}
 	for (const TriMesh* m : {&flipped, &soup}) {
-		check_capped(wrap_solid(*m, 0.05, 0.005, 0.4), ball);
+		check_capped(wrap_solid(*m, 0.05, 0.005, 0.4, 0.5, 0.25, /*fill=*/false), ball);
+		const WrapSolidResult r = wrap_solid(*m, 0.05, 0.005, 0.4);   // by default their holes are filled
+		CHECK(!r.wrapped);
+		CHECK(r.filled == (m == &flipped ? 1 : 2));
+		CHECK(std::abs(std::abs(signed_volume(r.mesh)) - ball) < 0.02 * ball);
 	}
 }
 
@@ -175,6 +255,7 @@ TEST_CASE("an open shell no wrap fills keeps its skin")
 	CHECK(r.skin);
 	CHECK(!r.capped);
 	CHECK(r.cap_share > 0.25);
+	CHECK(r.filled == 0);
 	CHECK(r.alpha == 0.05);
 	CHECK(signed_volume(r.mesh) < 0.1 * (2.0 / 3.0 * M_PI));
 }
@@ -188,6 +269,7 @@ TEST_CASE("an opening wider than the coarsest wrap would close keeps the skin")
 	CHECK(r.skin);
 	CHECK(!r.capped);
 	CHECK(r.cap_share < 0.25);
+	CHECK(r.filled == 0);
 	CHECK(r.alpha == 0.05);
 	// The skin hugs the sheet: its corners at the offset, the faces that curl round the rim within alpha.
 	CHECK(r.to_input < 0.05);

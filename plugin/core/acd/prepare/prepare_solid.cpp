@@ -20,6 +20,8 @@ const std::vector<PreprocessingMode>& preprocessing_modes()
 		 "about wrap_offset outside the input)"},
 		{Preprocessing::Auto, "auto",
 		 "as given when it is a valid solid, else welded (vertices within 1e-5 of its size) if that makes it one, "
+		 "else, for a surface with holes that is not an open shell, its holes filled and faired (CGAL's hole filling: "
+		 "the patches continue the surface's curvature) if that makes a solid that does not cross itself, "
 		 "else alpha wrapped; a wrap that slipped inside through wider holes (a hollow skin) is made again with "
 		 "caps across the openings where the input's generalized winding number is 1/2, so that they close along "
 		 "the surface; an open shell (a sheet, a bowl, a helmet) keeps its skin. A solid that crosses itself is "
@@ -77,8 +79,10 @@ PreparedSolid prepare_solid(const TriMesh& mesh, const PrepareOptions& o)
 			if (w.wrapped) wrapped(p, std::move(w.mesh), w.alpha, w.alpha / p.size);
 			else {
 				p.solid  = w.solid ? std::move(*w.solid) : make_solid(w.mesh);
-				p.done   = w.welded > 0 ? PreparedSolid::Welded : PreparedSolid::AsGiven;
+				p.done   = w.filled > 0 ? PreparedSolid::Filled
+				         : w.welded > 0 ? PreparedSolid::Welded : PreparedSolid::AsGiven;
 				p.welded = w.welded;
+				p.filled = w.filled;
 			}
 		}
 	}
@@ -92,6 +96,7 @@ std::string describe(const PreparedSolid& p)
 {
 	char buf[64];
 	if (p.done == PreparedSolid::Welded) std::snprintf(buf, sizeof buf, "welded %d vertices", p.welded);
+	else if (p.done == PreparedSolid::Filled) std::snprintf(buf, sizeof buf, "%d holes filled", p.filled);
 	else if (p.done == PreparedSolid::Wrapped)
 		std::snprintf(buf, sizeof buf, "alpha_wrap %.3g%%%s", 100 * p.alpha_share,
 		              p.capped ? ", openings capped" : p.skin ? ", a skin" : "");

@@ -35,10 +35,11 @@ struct PrepareOptions
 
 struct PreparedSolid
 {
-	enum Done { AsGiven, Welded, Wrapped };
+	enum Done { AsGiven, Welded, Wrapped, Filled };   // values are reported (preprocessing_done)
 	Solid       solid;
 	Done        done    = AsGiven;
 	int         welded  = 0;      // vertices merged into another
+	int         filled  = 0;      // holes filled and faired (Filled)
 	double      alpha   = 0;      // the wrap's alpha kept, model units (0: not wrapped)
 	double      alpha_share = 0;  // the same, a share of size
 	double      offset  = 0;      // the wrap's offset, model units
@@ -61,7 +62,7 @@ struct PreparedSolid
 // nothing finite to wrap), and with refuse_self_intersection for a solid that crosses itself.
 PreparedSolid prepare_solid(const TriMesh& mesh, const PrepareOptions& options);
 
-// What was done, in a few words: "as given", "welded 12 vertices", "alpha_wrap 2%".
+// What was done, in a few words: "as given", "welded 12 vertices", "3 holes filled", "alpha_wrap 2%".
 std::string describe(const PreparedSolid& p);
 
 } // namespace acd

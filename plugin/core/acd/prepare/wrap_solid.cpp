@@ -1,6 +1,7 @@
 #include "acd/prepare/wrap_solid.h"
 
 #include "acd/prepare/alpha_wrap.h"
+#include "acd/prepare/fill_holes.h"
 #include "acd/prepare/winding_caps.h"
 #include "acd/mesh/nearest.h"
 #include "acd/mesh/orient.h"
@@ -100,9 +101,28 @@ TriMesh          coarse_copy(const TriMesh& welded, double offset, double& cell)
 
 } // namespace
 
+namespace {
+
+// The input's finite vertices that a face uses (all of them for a point cloud): a vertex no face uses,
+// such as one left inside a hole cut out of a mesh, is no part of the surface.
+std::vector<Vec3> used_vertices(const TriMesh& m)
+{
+	if (m.F.empty()) return finite_vertices(m);
+	std::vector<char> used(m.V.size(), 0);
+	for (const Tri& t : m.F)
+		for (int v : t)
+			if (v >= 0 && v < (int) m.V.size()) used[v] = 1;
+	std::vector<Vec3> out;
+	for (size_t i = 0; i < m.V.size(); ++i)
+		if (used[i] && m.V[i].allFinite()) out.push_back(m.V[i]);
+	return out;
+}
+
+} // namespace
+
 std::pair<double, double> wrap_distances(const TriMesh& wrap, const TriMesh& input, const NearestOnSurface& near)
 {
-	return {near.farthest_on(wrap), NearestOnSurface(wrap).farthest(finite_vertices(input))};
+	return {near.farthest_on(wrap), NearestOnSurface(wrap).farthest(used_vertices(input))};
 }
 
 namespace {
@@ -157,10 +177,29 @@ bool capped_wrap(const TriMesh& input, const WindingCaps& caps, const std::vecto
 	return true;
 }
 
+// The weld with its holes filled and faired, kept when that is a valid solid that does not cross itself.
+bool filled_solid(const TriMesh& welded, WrapSolidResult& r)
+{
+	std::optional<FilledHoles> f = fill_holes(welded);
+	if (!f) return false;
+	try {
+		Solid s = make_solid(f->mesh);
+		if (s.self_intersections > 0) return false;
+		r.solid = std::move(s);
+	} catch (const Error& e) {
+		if (e.kind != Error::InvalidInput) throw;
+		return false;
+	}
+	r.mesh    = std::move(f->mesh);
+	r.filled  = f->holes;
+	r.wrapped = false;
+	return true;
+}
+
 } // namespace
 
 WrapSolidResult wrap_solid(const TriMesh& input, double alpha, double offset, double max_alpha, double min_inside,
-                           double max_cap_share)
+                           double max_cap_share, bool fill)
 {
 	WrapSolidResult r;
 	TriMesh         welded;
@@ -184,6 +223,7 @@ WrapSolidResult wrap_solid(const TriMesh& input, double alpha, double offset, do
 	r.cap_share        = caps ? caps->cap_share : 0;
 	const bool shell   = caps && (r.cap_share > max_cap_share || reach > max_alpha);
 	const bool wide    = caps && !shell && reach > alpha;
+	if (fill && caps && !shell && filled_solid(welded, r)) return measured(r, tree);
 	if (wide && capped_wrap(coarse, *caps, inside, alpha, offset, min_inside, r, tree)) return measured(r, tree);
 	keep(r, wrap_beside(coarse, alpha, offset, tree), alpha, 1.0);
 	++r.tries;

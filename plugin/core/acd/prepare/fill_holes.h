@@ -1,0 +1,30 @@
+// Openings closed by CGAL's hole filling: each hole of an edge-manifold surface triangulated, refined to
+// the density of its rim and faired, so that the patch continues the surface's curvature across the
+// opening. A hole punched into a curved surface then closes along that surface instead of as a flat
+// film, and the rest of the input is kept exactly as it is. Each hole is filled in a few rings of faces
+// about it, so the cost follows the holes, not the surface.
+#pragma once
+
+#include "acd/mesh/mesh.h"
+
+#include <optional>
+
+namespace acd {
+
+struct FilledHoles
+{
+	TriMesh mesh;         // the surface (its faces turned to agree, faces naming a vertex twice dropped),
+	                      // then the patches' vertices and faces
+	int     holes  = 0;   // holes filled (holes that touch at a corner count as one)
+	int     faired = 0;   // of them, those faired; a faired patch that crosses the faces about it (a bulge
+	                      // beside a sharp edge) is replaced by the flat one, triangulated and refined only
+};
+
+// nullopt when the surface is no edge-manifold, orientable triangle surface (an edge of three faces,
+// pieces that cannot agree on an orientation), has no hole, more than `max_holes` holes or a hole of more
+// than `max_rim` edges (the triangulation's cost grows with the cube of a rim's length), or a hole the
+// triangulation cannot close. The result is not checked as a whole: a patch may still cross a far part of
+// the surface (make_solid tells).
+std::optional<FilledHoles> fill_holes(const TriMesh& surface, int max_holes = 200, int max_rim = 2000);
+
+} // namespace acd
