@@ -278,7 +278,8 @@ std::optional<FilledHoles> fill_holes(const TriMesh& surface, int max_holes, int
 		if ((int) h.rim.size() > max_rim) return std::nullopt;
 	const VertexFaces vf(m);
 	FilledHoles       r;
-	r.mesh = m;
+	r.mesh        = m;
+	r.first_patch = m.F.size();
 	for (const Hole& hole : holes) {
 		const std::vector<int> faces = rings_about(m, vf, hole.vertices);
 		std::optional<Patch>   p     = fill_one(m, faces, hole.rim, true);

@@ -15,6 +15,7 @@ struct FilledHoles
 {
 	TriMesh mesh;         // the surface (its faces turned to agree, faces naming a vertex twice dropped),
 	                      // then the patches' vertices and faces
+	size_t  first_patch = 0;   // mesh.F from here on are the patches' faces
 	int     holes  = 0;   // holes filled (holes that touch at a corner count as one)
 	int     faired = 0;   // of them, those faired; a faired patch that crosses the faces about it (a bulge
 	                      // beside a sharp edge) is replaced by the flat one, triangulated and refined only

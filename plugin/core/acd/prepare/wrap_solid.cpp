@@ -62,6 +62,21 @@ void keep(WrapSolidResult& r, TriMesh w, double alpha, double share)
 	r.inside = share;
 }
 
+// The input's finite vertices that a face uses (all of them for a point cloud): a vertex no face uses,
+// such as one left inside a hole cut out of a mesh, is no part of the surface.
+std::vector<Vec3> used_vertices(const TriMesh& m)
+{
+	if (m.F.empty()) return finite_vertices(m);
+	std::vector<char> used(m.V.size(), 0);
+	for (const Tri& t : m.F)
+		for (int v : t)
+			if (v >= 0 && v < (int) m.V.size()) used[v] = 1;
+	std::vector<Vec3> out;
+	for (size_t i = 0; i < m.V.size(); ++i)
+		if (used[i] && m.V[i].allFinite()) out.push_back(m.V[i]);
+	return out;
+}
+
 // The input's distance tree, built beside the first wrap: the wrap runs on one thread, and on a big
 // input the tree takes about half as long.
 struct InputTree
@@ -97,25 +112,6 @@ TriMesh          coarse_copy(const TriMesh& welded, double offset, double& cell)
 	if (welded.F.size() <= kWrapFaces) return welded;
 	cell = std::max(offset, std::sqrt(2 * surface_area(welded) / kWrapFaces));
 	return weld(welded, cell);
-}
-
-} // namespace
-
-namespace {
-
-// The input's finite vertices that a face uses (all of them for a point cloud): a vertex no face uses,
-// such as one left inside a hole cut out of a mesh, is no part of the surface.
-std::vector<Vec3> used_vertices(const TriMesh& m)
-{
-	if (m.F.empty()) return finite_vertices(m);
-	std::vector<char> used(m.V.size(), 0);
-	for (const Tri& t : m.F)
-		for (int v : t)
-			if (v >= 0 && v < (int) m.V.size()) used[v] = 1;
-	std::vector<Vec3> out;
-	for (size_t i = 0; i < m.V.size(); ++i)
-		if (used[i] && m.V[i].allFinite()) out.push_back(m.V[i]);
-	return out;
 }
 
 } // namespace
@@ -177,8 +173,26 @@ bool capped_wrap(const TriMesh& input, const WindingCaps& caps, const std::vecto
 	return true;
 }
 
+// The faces from `first` on, with the vertices they use only.
+TriMesh faces_from(const TriMesh& m, size_t first)
+{
+	TriMesh          out;
+	std::vector<int> id(m.V.size(), -1);
+	for (size_t f = first; f < m.F.size(); ++f) {
+		Tri t;
+		for (int k = 0; k < 3; ++k) {
+			int& v = id[m.F[f][k]];
+			if (v < 0) v = (int) out.V.size(), out.V.push_back(m.V[m.F[f][k]]);
+			t[k] = v;
+		}
+		out.F.push_back(t);
+	}
+	return out;
+}
+
 // The weld with its holes filled and faired, kept when that is a valid solid that does not cross itself.
-bool filled_solid(const TriMesh& welded, WrapSolidResult& r)
+// Its distance to the input is the patches': the rest is the input's own faces.
+bool filled_solid(const TriMesh& welded, WrapSolidResult& r, InputTree& t)
 {
 	std::optional<FilledHoles> f = fill_holes(welded);
 	if (!f) return false;
@@ -190,9 +204,12 @@ bool filled_solid(const TriMesh& welded, WrapSolidResult& r)
 		if (e.kind != Error::InvalidInput) throw;
 		return false;
 	}
-	r.mesh    = std::move(f->mesh);
-	r.filled  = f->holes;
-	r.wrapped = false;
+	if (!t.near) t.near = std::make_unique<NearestOnSurface>(t.input);
+	r.to_input   = t.near->farthest_on(faces_from(f->mesh, f->first_patch));
+	r.from_input = NearestOnSurface(f->mesh).farthest(used_vertices(t.input));
+	r.mesh       = std::move(f->mesh);
+	r.filled     = f->holes;
+	r.wrapped    = false;
 	return true;
 }
 
@@ -223,7 +240,7 @@ WrapSolidResult wrap_solid(const TriMesh& input, double alpha, double offset, do
 	r.cap_share        = caps ? caps->cap_share : 0;
 	const bool shell   = caps && (r.cap_share > max_cap_share || reach > max_alpha);
 	const bool wide    = caps && !shell && reach > alpha;
-	if (fill && caps && !shell && filled_solid(welded, r)) return measured(r, tree);
+	if (fill && caps && !shell && filled_solid(welded, r, tree)) return r;
 	if (wide && capped_wrap(coarse, *caps, inside, alpha, offset, min_inside, r, tree)) return measured(r, tree);
 	keep(r, wrap_beside(coarse, alpha, offset, tree), alpha, 1.0);
 	++r.tries;
