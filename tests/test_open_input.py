@@ -39,9 +39,9 @@ def check_solid_within(hulls, res, V, F):
     reach = reach_beyond(hulls, V, F, rng)
     assert reach <= res["tau_model_units"] + res["solid_to_input"] + 0.002 * diagonal(V), (reach, res)
     # no blob either (wraps that slipped to 4% or 16% alpha stood 3.9% and 11% of the diagonal from the input,
-    # twice tau and more): the patches lie about where
-    # the surface was, so the hulls stay near tau of the solid; a faired patch across the largest holes (8% of
-    # the diagonal, through a leg) may continue the surface up to about half tau beyond where it ended
+    # twice tau and more): the patches lie about where the surface was, so the hulls stay near tau of the
+    # solid; a faired patch across the largest holes (8% of the diagonal) may continue the surface a little
+    # beyond where it ended (spot with 10 holes: 1.42 tau)
     assert reach <= 1.5 * res["tau_model_units"] + 0.002 * diagonal(V), (reach, res)
     return reach
 
