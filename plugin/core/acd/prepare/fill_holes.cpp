@@ -28,6 +28,9 @@ namespace PMP = CGAL::Polygon_mesh_processing;
 
 // Fairing solves for the patch with the rings around its rim held: three rings hold what it needs.
 constexpr int kRings = 3;
+// Rims up to this long may fall back to the triangulation search whose cost grows with the cube of
+// their length (27 million steps here) when no patch is found among the Delaunay faces.
+constexpr size_t kCubicRim = 300;
 
 struct Edge
 {
@@ -228,7 +231,9 @@ std::optional<Patch> fill_one(const TriMesh& m, const std::vector<int>& faces, c
 	Patch            p;
 	for (SMesh::Halfedge_index h : cycles_of(sm, global, rim)) {
 		const size_t before = patch.size();
-		const auto   np     = CGAL::parameters::face_output_iterator(std::back_inserter(patch));
+		// The 3D Delaunay search first; the cubic search over all triangulations only for a short rim.
+		const auto np = CGAL::parameters::face_output_iterator(std::back_inserter(patch))
+		                    .do_not_use_cubic_algorithm(rim.size() > kCubicRim);
 		if (fair) p.faired += std::get<0>(PMP::triangulate_refine_and_fair_hole(sm, h, np));
 		else PMP::triangulate_and_refine_hole(sm, h, np);
 		if (patch.size() == before) return std::nullopt;
