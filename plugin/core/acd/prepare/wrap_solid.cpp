@@ -194,7 +194,14 @@ TriMesh faces_from(const TriMesh& m, size_t first)
 // Its distance to the input is the patches': the rest is the input's own faces.
 bool filled_solid(const TriMesh& welded, WrapSolidResult& r, InputTree& t)
 {
-	std::optional<FilledHoles> f = fill_holes(welded);
+	std::optional<FilledHoles> f;
+	try {
+		f = fill_holes(welded);
+	} catch (const Error&) {
+		throw;
+	} catch (const std::exception&) {   // CGAL's own failure in a patch: the wrap closes the holes instead
+		return false;
+	}
 	if (!f) return false;
 	try {
 		Solid s = make_solid(f->mesh);
