@@ -4,8 +4,8 @@ Cases (tests/support/fuzz_cases.py) run in child processes, so a crash (signal) 
 counted instead of killing pytest; the child is restarted after the offending case. Every case must
 either be refused with the message meant for its mutation (an open mesh as open, NaN as NaN, ...;
 an internal error or a message meant for another defect is a violation) or return parts that pass
-the partition checks (closed parts, positive volumes summing to the input's, input layer untouched),
-measured here.
+the partition checks (closed parts, positive volumes summing to the input's, or, where its holes were
+filled, a boundary holding every input vertex; input layer untouched), measured here.
 """
 import collections
 import os
