@@ -36,8 +36,7 @@ struct Edge
 {
 	int a, b;   // a < b
 	int from;   // the face's direction: a -> b (0) or b -> a (1)
-	int face;
-	bool operator<(const Edge& o) const { return std::tie(a, b, from, face) < std::tie(o.a, o.b, o.from, o.face); }
+	bool operator<(const Edge& o) const { return std::tie(a, b, from) < std::tie(o.a, o.b, o.from); }
 };
 
 // The surface's border edges, each as its face runs it (from, to); false for an edge of more than two
@@ -49,7 +48,7 @@ bool border_edges(const TriMesh& m, std::vector<std::pair<int, int>>& border)
 	for (int f = 0; f < (int) m.F.size(); ++f)
 		for (int k = 0; k < 3; ++k) {
 			const int u = m.F[f][k], v = m.F[f][(k + 1) % 3];
-			e.push_back({std::min(u, v), std::max(u, v), u > v, f});
+			e.push_back({std::min(u, v), std::max(u, v), u > v});
 		}
 	std::sort(e.begin(), e.end());
 	for (size_t i = 0, j = 0; i < e.size(); i = j) {
@@ -115,11 +114,11 @@ struct VertexFaces
 	}
 };
 
-// The faces within kRings rings of a hole's vertices, ascending.
-std::vector<int> rings_about(const TriMesh& m, const VertexFaces& vf, const std::vector<int>& hole)
+// The faces within kRings rings of a hole's vertices, ascending. `vin` (a flag per vertex, all clear)
+// is scratch shared by the holes, so that each costs what its rings hold, not the surface's size.
+std::vector<int> rings_about(const TriMesh& m, const VertexFaces& vf, const std::vector<int>& hole, std::vector<char>& vin)
 {
-	std::vector<int>  verts = hole, faces;
-	std::vector<char> vin(m.V.size(), 0);
+	std::vector<int>    verts = hole, faces, seen = hole;
 	std::map<int, char> fin;
 	for (int v : hole) vin[v] = 1;
 	for (int r = 0; r < kRings; ++r) {
@@ -129,10 +128,11 @@ std::vector<int> rings_about(const TriMesh& m, const VertexFaces& vf, const std:
 				if (!fin[vf.face[i]]++) {
 					faces.push_back(vf.face[i]);
 					for (int w : m.F[vf.face[i]])
-						if (!vin[w]) vin[w] = 1, next.push_back(w);
+						if (!vin[w]) vin[w] = 1, next.push_back(w), seen.push_back(w);
 				}
 		verts = std::move(next);
 	}
+	for (int v : seen) vin[v] = 0;
 	std::sort(faces.begin(), faces.end());
 	return faces;
 }
@@ -282,11 +282,12 @@ std::optional<FilledHoles> fill_holes(const TriMesh& surface, int max_holes, int
 	for (const Hole& h : holes)
 		if ((int) h.rim.size() > max_rim) return std::nullopt;
 	const VertexFaces vf(m);
+	std::vector<char> vin(m.V.size(), 0);
 	FilledHoles       r;
 	r.mesh        = m;
 	r.first_patch = m.F.size();
 	for (const Hole& hole : holes) {
-		const std::vector<int> faces = rings_about(m, vf, hole.vertices);
+		const std::vector<int> faces = rings_about(m, vf, hole.vertices, vin);
 		std::optional<Patch>   p     = fill_one(m, faces, hole.rim, true);
 		if (!p) p = fill_one(m, faces, hole.rim, false);
 		if (!p) return std::nullopt;
