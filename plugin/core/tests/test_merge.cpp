@@ -1,6 +1,5 @@
 #include "acd/solid/glue.h"
 #include "acd/decompose3/merge.h"
-#include "acd/decompose3/proxy_search.h"
 #include "acd/solid/separate.h"
 #include "acd/mesh/measures.h"
 #include "acd/solid/solid.h"
@@ -8,7 +7,6 @@
 #include "shapes.h"
 
 #include <algorithm>
-#include <cstdint>
 #include <set>
 #include <string>
 
@@ -206,86 +204,4 @@ TEST_CASE("crossings where parts touch across a cut are no fold; elsewhere they 
 	elsewhere.d     = 0.5;
 	CHECK(crossings_off_cuts(s, {elsewhere}, 1e-9) == s.self_intersections);
 	CHECK(crossings_off_cuts(s, {}, 1e-9) == s.self_intersections);
-}
-
-namespace {
-
-// A thin-walled bowl on a foot ring, turned about z.
-TriMesh bowl(int segments)
-{
-	std::vector<Eigen::Vector2d> profile = {{0, 0}, {2, 0}, {2, 0.3}};
-	for (int d = 25; d <= 90; d += 5) profile.push_back({5 * std::sin(d * M_PI / 180), 5.3 - 5 * std::cos(d * M_PI / 180)});
-	for (int d = 90; d >= 0; d -= 5) profile.push_back({4.6 * std::sin(d * M_PI / 180), 5.3 - 4.6 * std::cos(d * M_PI / 180)});
-	return shapes::lathe(profile, segments);
-}
-
-// Each part closed (every directed edge matched by its reverse once), every leaf in one part, the
-// parts' volumes summing to the solid's: measured afresh from the part meshes.
-void check_partition(const Decomposition& D, const Solid& solid)
-{
-	CHECK(D.tau_convex());
-	double        total = 0;
-	std::set<int> covered;
-	for (int p : D.parts()) {
-		const Node&                         n = D.nodes[p];
-		std::multiset<std::pair<int, int>> edges;
-		for (const Tri& t : n.mesh.F)
-			for (int k = 0; k < 3; ++k) edges.insert({t[k], t[(k + 1) % 3]});
-		for (const auto& [a, b] : edges) CHECK(edges.count({b, a}) == 1);
-		total += signed_volume(n.mesh);
-		for (int l : n.merged.empty() ? std::vector<int>{p} : n.merged) CHECK(covered.insert(l).second);
-	}
-	CHECK(covered.size() == D.leaves().size());
-	CHECK_NEAR(total, solid.volume, 1e-9 * solid.volume);
-}
-
-} // namespace
-
-TEST_CASE("merge: a part with one way to merge takes it first, for fewer parts than least concave first")
-{
-	// A bowl's wall is cut into arcs whose unions are about as concave as each other: least concave
-	// first takes arcs' only partners away from them, and they stay alone.
-	const TriMesh    b     = bowl(24);
-	const Solid      solid = make_solid(b);
-	DecomposeOptions o     = unmerged(b, 0.025);
-	o.cut_search           = CutSearch::Fast;
-	const Decomposition cut   = decompose(solid, o);
-	Decomposition       least = cut, fewest = cut;
-	merge_parts(least, o.tau, {}, 0, nullptr, MergeOrder::LeastConcave);
-	merge_parts(fewest, o.tau, {}, 0, nullptr, MergeOrder::FewestPartners);
-	CHECK(fewest.parts().size() + 3 <= least.parts().size());   // 34 against 40
-	check_partition(least, solid);
-	check_partition(fewest, solid);
-}
-
-TEST_CASE("merge: the thorough search keeps the fewer parts of both merge orders on the tree it keeps")
-{
-	// A mug's body: on the tree the thorough search keeps, least concave first leaves as few parts as
-	// fewest partners first; on the bowl, fewer parts come from fewest partners first.
-	const TriMesh mug = shapes::lathe({{0, 0}, {3.5, 0}, {3.5, 8}, {3.1, 8}, {3.1, 0.4}, {0, 0.4}}, 32);
-	const TriMesh b   = bowl(24);
-	for (const TriMesh* m : {&mug, &b}) {
-		const Solid      solid = make_solid(*m);
-		DecomposeOptions o     = unmerged(*m, 0.025);
-		o.merge_parts          = true;
-		const Decomposition D  = decompose(solid, o);
-		check_partition(D, solid);
-		// The tree it kept, grown again as decompose grows it (centred, at unit size), merged in each order.
-		Vec3             c;
-		double           s;
-		const Solid      unit = centred_unit(solid, c, s);
-		DecomposeOptions u    = o;
-		u.tau /= s;
-		u.merge_parts      = false;
-		u.pick_rule        = D.pick_rule;
-		const Decomposition tree = search(unit, u);
-		REQUIRE(tree.leaves().size() == D.leaves().size());
-		size_t fewest = SIZE_MAX;
-		for (MergeOrder order : {MergeOrder::LeastConcave, MergeOrder::FewestPartners}) {
-			Decomposition merged = tree;
-			merge_parts(merged, u.tau, {}, 0, nullptr, order);
-			fewest = std::min(fewest, merged.parts().size());
-		}
-		CHECK(D.parts().size() == fewest);
-	}
 }

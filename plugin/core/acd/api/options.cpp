@@ -57,8 +57,8 @@ std::vector<Option> make_table()
 		 "whether the limit was reached.", {}},
 		{"merge_parts", O::Flag, 1, "Merge neighbouring parts",
 		 "After the cuts, merge parts that share a cut face while their union stays within tau (by the same measure "
-		 "as the cuts, hull distance included), a part with the fewest ways left to merge first: fewer parts, still "
-		 "an exact partition. Off: the cut tree's leaves as they are.", {}},
+		 "as the cuts, hull distance included), the least concave union first: fewer parts, still an exact "
+		 "partition. Off: the cut tree's leaves as they are.", {}},
 		{"cut_search", O::Choice, (int) CutSearch::Thorough, "Cut search", "How hard the search for cuts looks.",
 		 cut_searches()},
 		{"output_hulls", O::Flag, 0, "Also add part hulls",

@@ -663,76 +663,35 @@ bool better(const Decomposition& a, const Decomposition& b)
 	return a.max_hull_distance() < b.max_hull_distance() - 1e-9;
 }
 
-// A merged tree back to its cut tree: merge_parts appends the merged parts after the tree's nodes.
-void unmerge(Decomposition& D, size_t tree_nodes)
-{
-	D.nodes.resize(tree_nodes);
-	for (Node& n : D.nodes) n.part = -1;
-	D.merges                   = 0;
-	D.merge_time_limit_reached = false;
-}
-
 // The search under each pick rule (cut_search = thorough; fast: the first alone), the better kept. A
 // greedy search's choices compound, so which rule leaves fewer parts shows only at the end; the
 // second search runs in the time the first left. A solid large enough to be searched on a proxy is
 // searched once: there the time goes to certifying its parts, which a second search would double.
-// Each tree is merged in the default order, and the tree kept is merged again least concave first,
-// which on some shapes strands fewer parts (merge.h): the fewer parts win, a tie keeps the first.
 Decomposition search_rules(const Solid& unit, const DecomposeOptions& opt)
 {
-	const auto start   = std::chrono::steady_clock::now();
-	const auto elapsed = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(); };
-	const bool timed   = opt.time_limit_seconds > 0;
-	const auto spent   = [&] { return timed && elapsed() >= opt.time_limit_seconds; };
-	const auto left    = [&] { return timed ? std::max(opt.time_limit_seconds - elapsed(), 1e-9) : 0.0; };   // 0: none
+	const auto start = std::chrono::steady_clock::now();
 	DecomposeOptions o = opt;
 	const bool both = opt.cut_search == CutSearch::Thorough && opt.max_parts == 0 &&
 	                  unit.mesh.F.size() <= (size_t) ProxySettings().above;
+	if (both && opt.progress)
+		o.progress = [&](int pct, const char* msg) { return opt.progress(pct / 2, msg); };
 	o.pick_rule = PickRule::WorseHalf;
-	if (!both) return search(unit, o);
-	if (opt.progress) o.progress = [&](int pct, const char* msg) { return opt.progress(pct / 2, msg); };
-	o.merge_parts = false;   // merged here, so that the tree kept can be merged again
-	MergeMemo memo;          // the two trees share their first cuts, and their merges many unions
-	// A tree cut and merged, and how many nodes its cut tree has.
-	const auto cut_and_merge = [&](Decomposition& T) {
-		o.time_limit_seconds = left();
-		T                    = search(unit, o, {}, &memo);
-		const size_t nodes   = T.nodes.size();
-		if (opt.merge_parts) merge_parts(T, o.tau, o.progress, left(), &memo);
-		return nodes;
-	};
-	Decomposition D, E;
-	const size_t  d_nodes = cut_and_merge(D);
-	size_t        e_nodes = 0;
-	if (!spent()) {
-		if (opt.progress) o.progress = [&](int pct, const char* msg) { return opt.progress(50 + pct / 2, msg); };
-		o.pick_rule = PickRule::PartsNeeded;
-		e_nodes     = cut_and_merge(E);
-		E.pick_rule = PickRule::PartsNeeded;
+	MergeMemo     memo;   // the two trees share their first cuts, and their merges many unions
+	Decomposition D = search(unit, o, {}, both ? &memo : nullptr);
+	if (!both) return D;
+	if (opt.time_limit_seconds > 0) {
+		o.time_limit_seconds -= std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+		if (o.time_limit_seconds <= 0) return D;
 	}
-	const bool    second = e_nodes > 0 && better(E, D);
-	Decomposition T      = std::move(second ? E : D);
-	(second ? D : E)     = Decomposition();
-	if (!opt.merge_parts || T.merges == 0 || T.merge_time_limit_reached || spent()) return T;
-	Decomposition L = T;
-	unmerge(L, second ? e_nodes : d_nodes);
-	merge_parts(L, o.tau, o.progress, left(), &memo, MergeOrder::LeastConcave);
-	return !L.merge_time_limit_reached && L.parts().size() < T.parts().size() ? L : T;
+	if (opt.progress) o.progress = [&](int pct, const char* msg) { return opt.progress(50 + pct / 2, msg); };
+	o.pick_rule = PickRule::PartsNeeded;
+	Decomposition E = search(unit, o, {}, &memo);
+	if (!better(E, D)) return D;
+	E.pick_rule = PickRule::PartsNeeded;
+	return E;
 }
 
 } // namespace
-
-Solid centred_unit(const Solid& solid, Vec3& centre, double& size)
-{
-	centre = Vec3::Zero();
-	for (const Vec3& p : solid.mesh.V) centre += p;
-	centre /= (double) solid.mesh.V.size();
-	size       = extent(solid.mesh.V);
-	Solid unit = solid;
-	for (Vec3& p : unit.mesh.V) p = (p - centre) / size;
-	unit.volume /= size * size * size;
-	return unit;
-}
 
 Decomposition decompose(const Solid& solid, const DecomposeOptions& opt)
 {
@@ -745,9 +704,13 @@ Decomposition decompose(const Solid& solid, const DecomposeOptions& opt)
 	// Work centred and at unit size: a mesh far from the origin (CAD, map coordinates) would
 	// otherwise carry rounding errors hundreds of times larger than the same mesh at the origin,
 	// and rounding decides near-ties. The tree is mapped back to model coordinates at the end.
-	Vec3              c;
-	double            s;
-	const Solid       unit = centred_unit(solid, c, s);
+	Vec3 c = Vec3::Zero();
+	for (const Vec3& p : solid.mesh.V) c += p;
+	c /= (double) solid.mesh.V.size();
+	const double s = extent(solid.mesh.V);
+	Solid        unit = solid;
+	for (Vec3& p : unit.mesh.V) p = (p - c) / s;
+	unit.volume /= s * s * s;
 	DecomposeOptions o = opt;
 	o.tau /= s;
 	Decomposition D = search_rules(unit, o);

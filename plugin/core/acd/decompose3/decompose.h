@@ -107,9 +107,6 @@ inline bool certified(const Node& n, double tau)
 }
 
 Decomposition decompose(const Solid& solid, const DecomposeOptions& options);
-// The solid decompose() works on: its vertices' mean (`centre`) moved to the origin, scaled by 1 / its
-// extent (`size`).
-Solid centred_unit(const Solid& solid, Vec3& centre, double& size);
 
 // decompose()'s stages, for the proxy search (proxy_search.h). The cut tree of a solid centred and at
 // unit size (no merge); and a node's measures from its mesh, as the cuts take them.

@@ -1,5 +1,5 @@
 // The merge stage (merge.h): neighbours from the cuts' caps, each neighbouring pair's union scored by
-// the cuts' own certificate, the union of a part with the fewest ways left to merge taken first.
+// the cuts' own certificate, the least concave union merged first.
 #include "acd/decompose3/merge.h"
 #include "acd/solid/glue.h"
 #include "acd/hull/hull_reach.h"
@@ -175,9 +175,9 @@ class Merger
 {
 public:
 	Merger(Decomposition& D, double tau, const std::function<bool(int, const char*)>& progress, double seconds,
-	       MergeMemo* memo, MergeOrder order)
+	       MergeMemo* memo)
 	    : D(D), tau(tau), eps(1e-9 * extent(D.nodes[0].mesh.V)), progress(progress), seconds(seconds),
-	      start(std::chrono::steady_clock::now()), memo(memo), order(order), heap(Later{this})
+	      start(std::chrono::steady_clock::now()), memo(memo), heap(Later{this})
 	{
 	}
 
@@ -202,7 +202,6 @@ private:
 	const double                                    seconds;   // 0: no time limit
 	const std::chrono::steady_clock::time_point     start;
 	MergeMemo* const                                memo;
-	const MergeOrder                                order;
 	std::vector<Group>                              groups;
 	std::vector<std::set<int>>                      nbr;
 	std::map<std::pair<int, int>, int>              contact;   // neighbouring leaves -> the cut between them
@@ -435,7 +434,7 @@ private:
 			for (size_t i = 0; i < n; ++i) {
 				if (!u[i]) continue;
 				pool.push_back({pairs[from + i].first, pairs[from + i].second, std::move(*u[i])});
-				if (order == MergeOrder::LeastConcave) heap.push((int) pool.size() - 1);
+				heap.push((int) pool.size() - 1);
 			}
 			if (pairs.size() > batch) {
 				char msg[96];
@@ -445,41 +444,12 @@ private:
 		}
 	}
 
-	// The next union to merge (a pool index; -1: none left). Least concave first: the heap's top. Fewest
-	// partners first: among the unions still open, one whose less connected group has the fewest passing
-	// unions left, so that a group with one way to merge takes it before a rival merge closes it; ties
-	// least concave first. The counts change with every merge, so the open unions are scanned (a scan
-	// costs far less than the union measured for each merge); a union gone stale is dropped there.
-	int next()
-	{
-		if (order == MergeOrder::LeastConcave) {
-			if (heap.empty()) return -1;
-			const int i = heap.top();
-			heap.pop();
-			return i;
-		}
-		std::vector<int> partners(groups.size(), 0);
-		for (Candidate& c : pool) {
-			if (c.a < 0) continue;
-			if (groups[c.a].alive && groups[c.b].alive) ++partners[c.a], ++partners[c.b];
-			else c.a = c.b = -1, c.u = Group();
-		}
-		const auto open = [&](const Candidate& c) { return c.a >= 0; };
-		int best = -1, fewest = 0;
-		const Later later{this};
-		for (int i = 0; i < (int) pool.size(); ++i) {
-			if (!open(pool[i])) continue;
-			const int f = std::min(partners[pool[i].a], partners[pool[i].b]);
-			if (best < 0 || f < fewest || (f == fewest && later(best, i))) best = i, fewest = f;
-		}
-		return best;
-	}
-
 	void greedy()
 	{
-		for (int i; !out_of_time() && (i = next()) >= 0;) {
+		while (!heap.empty() && !out_of_time()) {
+			const int i = heap.top();
+			heap.pop();
 			const int a = pool[i].a, b = pool[i].b;
-			pool[i].a = pool[i].b = -1;   // taken (or stale): never offered again
 			Group u = std::move(pool[i].u);
 			pool[i].u = Group();
 			if (!groups[a].alive || !groups[b].alive) continue;   // one of them has merged since
@@ -559,9 +529,9 @@ std::vector<LeafContact> neighbouring_leaves(const Decomposition& D)
 }
 
 int merge_parts(Decomposition& D, double tau, const std::function<bool(int, const char*)>& progress, double seconds,
-                MergeMemo* memo, MergeOrder order)
+                MergeMemo* memo)
 {
-	return Merger(D, tau, progress, seconds, memo, order).run();
+	return Merger(D, tau, progress, seconds, memo).run();
 }
 
 } // namespace acd

@@ -10,8 +10,8 @@
 
 namespace acd {
 
-// Leaves sharing a cut's cap (with positive area) are neighbours. Greedily, neighbouring pairs are
-// merged (in `order`, below) while their union passes the cuts' certificate: the paper's
+// Leaves sharing a cut's cap (with positive area) are neighbours. Greedily, the neighbouring pair
+// whose union is least concave is merged, while the union passes the cuts' certificate: the paper's
 // concavity (which includes the hull's reach) at most tau and the hull's reach certified within 1% of
 // tau, one shell, no cavity. Unions are exact (CGAL corefinement), so the parts stay an exact
 // partition of the solid. The cut tree is kept as it is; each merged part is appended as a node
@@ -31,17 +31,8 @@ public:
 	struct Unions;
 	std::unique_ptr<Unions> unions;
 };
-// Which passing union the greedy merge takes next. LeastConcave: the least concave. FewestPartners:
-// one of the group with the fewest passing unions left (ties least concave first), so that a part
-// with one way to merge takes it before a neighbour's merge closes it; a thin wall cut into arcs
-// strands fewer arcs (a cup, a bowl, a mug: 5 to 15% fewer parts), and it costs no more time.
-enum class MergeOrder
-{
-	LeastConcave,
-	FewestPartners
-};
 int merge_parts(Decomposition& D, double tau, const std::function<bool(int, const char*)>& progress = {},
-                double seconds = 0, MergeMemo* memo = nullptr, MergeOrder order = MergeOrder::FewestPartners);
+                double seconds = 0, MergeMemo* memo = nullptr);
 
 // Neighbouring leaves (node ids a < b): on the two sides of the cut at node `cut`, their caps on its
 // plane overlapping with positive area.
