@@ -242,14 +242,14 @@ def run_case(i, cache):
 
 
 def on_parts_boundary(ms, ids, V0, F0, res):
-    import igl
+    from .hull_reach import point_surface_distance
     P = np.concatenate([ms.mesh(j).vertex_matrix() for j in ids])
     offset = np.cumsum([0] + [ms.mesh(j).vertex_number() for j in ids])[:-1]
-    T = np.concatenate([ms.mesh(j).face_matrix() + o for j, o in zip(ids, offset)]).astype(np.int64)
+    T = np.concatenate([ms.mesh(j).face_matrix() + o for j, o in zip(ids, offset)])
     used = np.unique(F0[((F0 >= 0) & (F0 < len(V0))).all(axis=1)])
     Q = V0[used]
     Q = Q[np.isfinite(Q).all(axis=1)]
-    d = np.sqrt(igl.point_mesh_squared_distance(Q, np.ascontiguousarray(P, float), T)[0])
+    d, _ = point_surface_distance(Q, P, T)
     diag = float(np.linalg.norm(np.ptp(Q, axis=0)))
     if d.max() > 2e-5 * diag:
         return "violation", f"holes filled, but an input vertex lies {d.max() / diag:.3g} of the size off the parts"
