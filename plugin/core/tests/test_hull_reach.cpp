@@ -64,3 +64,24 @@ TEST_CASE("every leaf of a ring is certified")
 		}
 	}
 }
+
+TEST_CASE("whether the reach is within floor + slack does not depend on the pose")
+{
+	// The L prism's reach is 0.5. Asked whether it is within 0.499 + 0.002, the search must settle
+	// every bound below 0.501 even after it has met points beyond 0.499 (which of them it meets first
+	// follows the pose); asked about 0.49 + 0.005, it must find a point beyond 0.495 in every pose.
+	const TriMesh base = shapes::extrude(shapes::l_shape(), 0, 0.5);
+	for (int k = 0; k < 8; ++k) {
+		const Eigen::Matrix3d R = (Eigen::AngleAxisd(0.37 * k, Vec3(1, 2, 3).normalized()) *
+		                           Eigen::AngleAxisd(0.11 * k * k, Vec3(0, 1, 0)))
+		                              .toRotationMatrix();
+		TriMesh m = base;
+		for (Vec3& v : m.V) v = R * v + Vec3(0.3 * k, -1.7, 2.1 * k);
+		const ConvexHull  h(m.V);
+		std::vector<char> all(h.facets(), 1);
+		const HullReach   in = hull_reach(m, h, all, 0.499, 0.002, 0.02);
+		CHECK(in.upper <= 0.501 + 1e-12);
+		const HullReach out = hull_reach(m, h, all, 0.49, 0.005, 0.02);
+		CHECK(out.lower > 0.495);
+	}
+}

@@ -107,7 +107,9 @@ HullReach hull_reach(const TriMesh& m, const ConvexHull& hull, const std::vector
 	}
 	while (!heap.empty()) {
 		const Piece p = heap.top();
-		const double bar = out.lower > floor ? out.lower * (1 + relative) + slack : floor + slack;
+		// Until a point beyond floor + slack is found, every bound is settled against floor + slack, so
+		// that whether the reach is certified there does not hang on which point the search met first.
+		const double bar = out.lower > floor + slack ? out.lower * (1 + relative) + slack : floor + slack;
 		if (p.bound <= bar || out.evaluations >= max_evaluations) break;
 		heap.pop();
 		const Vec3 ab = (p.a + p.b) / 2, bc = (p.b + p.c) / 2, ca = (p.c + p.a) / 2;

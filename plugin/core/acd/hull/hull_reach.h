@@ -23,8 +23,9 @@ struct HullReach
 // triangle whose centre lies at d from the surface, with its corners within R of the centre, holds
 // no point farther than d + R; and it is at most the distance to any one face, which is convex, so
 // no farther than that face is from the triangle's corners. The triangle with the largest bound is split in four until every
-// bound is settled: at most floor + slack while nothing beyond `floor` is found (the reach is then
-// certified below floor + slack), else within `relative` (and slack) of the farthest point found.
+// bound is settled: at most floor + slack while nothing beyond floor + slack is found (the reach is
+// then certified below floor + slack, in any pose: a point found between floor and floor + slack does
+// not end the search), else within `relative` (and slack) of the farthest point found.
 // `max_evaluations` bounds the work: past it, `upper` keeps the largest bound left.
 HullReach hull_reach(const TriMesh& m, const ConvexHull& hull, const std::vector<char>& bridge, double floor,
                      double slack, double relative = 0.02, int max_evaluations = 200000);
