@@ -1,4 +1,5 @@
 #include "acd/solid/glue.h"
+#include "acd/hull/hull_reach.h"
 #include "acd/decompose3/merge.h"
 #include "acd/solid/separate.h"
 #include "acd/mesh/measures.h"
@@ -204,4 +205,91 @@ TEST_CASE("crossings where parts touch across a cut are no fold; elsewhere they 
 	elsewhere.d     = 0.5;
 	CHECK(crossings_off_cuts(s, {elsewhere}, 1e-9) == s.self_intersections);
 	CHECK(crossings_off_cuts(s, {}, 1e-9) == s.self_intersections);
+}
+
+namespace {
+
+// Every leaf in exactly one part, pointing to it; each part one closed solid of its leaves' volume,
+// within tau, its hull within 1% of tau over every facet (no bridge classification trusted).
+void check_partition(const Decomposition& D, double tau)
+{
+	std::set<int> covered;
+	for (int p : D.parts()) {
+		const Node&            n      = D.nodes[p];
+		const Solid            s      = make_solid(n.mesh);
+		const std::vector<int> leaves = n.merged.empty() ? std::vector<int>{p} : n.merged;
+		double                 sum    = 0;
+		for (int l : leaves) {
+			CHECK(covered.insert(l).second);
+			CHECK(D.nodes[l].part == (n.merged.empty() ? -1 : p));
+			sum += D.nodes[l].volume;
+		}
+		CHECK(s.shells == 1);
+		CHECK_NEAR(s.volume, sum, 1e-9);
+		CHECK(n.concavity <= tau);
+		const ConvexHull h(s.mesh.V);
+		CHECK(hull_reach(s.mesh, h, std::vector<char>(h.facets(), 1), tau, 0.01 * tau, 0.0, 2000000).upper <= 1.01 * tau);
+	}
+	CHECK(covered.size() == D.leaves().size());
+}
+
+// A thin-walled bowl on a foot ring, turned about z: its wall is cut into many arcs that merge.
+TriMesh bowl(int segments)
+{
+	std::vector<Eigen::Vector2d> profile = {{0, 0}, {2, 0}, {2, 0.3}};
+	for (int d = 25; d <= 90; d += 5) profile.push_back({5 * std::sin(d * M_PI / 180), 5.3 - 5 * std::cos(d * M_PI / 180)});
+	for (int d = 90; d >= 0; d -= 5) profile.push_back({4.6 * std::sin(d * M_PI / 180), 5.3 - 4.6 * std::cos(d * M_PI / 180)});
+	return shapes::lathe(profile, segments);
+}
+
+std::vector<std::string> part_paths(const Decomposition& D)
+{
+	std::vector<std::string> out;
+	for (int p : D.parts()) out.push_back(D.nodes[p].path);
+	return out;
+}
+
+} // namespace
+
+TEST_CASE("merge further: from the leaves it is the merge; parts taken apart merge back across the parts as they stand")
+{
+	const TriMesh    b = bowl(24);
+	DecomposeOptions o = unmerged(b, 0.025);
+	o.cut_search       = CutSearch::Fast;
+	const Decomposition cut = decompose(make_solid(b), o);
+	Decomposition       D    = cut;
+	const int           m    = merge_parts(D, o.tau);
+	REQUIRE(m > 0);
+
+	// From the leaves, every pair measured first: the same parts.
+	Decomposition again = cut;
+	CHECK(merge_parts_further(again, o.tau, [](int) { return true; }) == m);
+	CHECK(part_paths(again) == part_paths(D));
+
+	// Two merged parts taken apart, as a search of them again leaves its own parts: their leaves
+	// merge again, with each other or with the merged parts around them.
+	const size_t          merged = D.parts().size();
+	std::vector<char>     drop(D.nodes.size(), 0);
+	std::set<std::string> apart;
+	int                   taken = 0;
+	for (int p : D.parts())
+		if (!D.nodes[p].merged.empty() && taken < 2) {
+			drop[p] = 1, ++taken;
+			D.merges -= (int) D.nodes[p].merged.size() - 1;
+			for (int l : D.nodes[p].merged) D.nodes[l].part = -1, apart.insert(D.nodes[l].path);
+		}
+	REQUIRE(taken == 2);
+	drop_nodes(D, drop);
+	const size_t before = D.parts().size();
+	REQUIRE(before > merged);
+	check_partition(D, o.tau);
+	const int further = merge_parts_further(D, o.tau, [&](int p) { return apart.count(D.nodes[p].path) > 0; });
+	CHECK(further > 0);
+	CHECK(D.parts().size() == before - further);
+	CHECK(D.parts().size() == D.leaves().size() - D.merges);
+	check_partition(D, o.tau);
+	// The greedy merge leaves no neighbouring pair whose union passes: merging on finds none.
+	const size_t after = D.parts().size();
+	CHECK(merge_parts_further(D, o.tau, [](int) { return true; }) == 0);
+	CHECK(D.parts().size() == after);
 }

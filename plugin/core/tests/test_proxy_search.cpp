@@ -82,6 +82,16 @@ TEST_CASE("proxy search: a proxy too coarse for tau has its failing parts search
 		double                         total = 0;
 		for (int p : D.parts()) parts.push_back(D.nodes[p].mesh.V), total += volume(D.nodes[p].mesh);
 		CHECK_NEAR(total / volume(m), 1.0, 1e-9);
+		// Every leaf in one part, pointing to it; each merge one part fewer (the parts searched
+		// again merged across with the rest: a merged part merged further is gone).
+		std::vector<int> in(D.nodes.size(), 0);
+		for (int p : D.parts())
+			for (int l : D.nodes[p].merged.empty() ? std::vector<int>{p} : D.nodes[p].merged) {
+				++in[l];
+				CHECK(D.nodes[l].part == (D.nodes[p].merged.empty() ? -1 : p));
+			}
+		for (int l : D.leaves()) CHECK(in[l] == 1);
+		CHECK(D.parts().size() == D.leaves().size() - D.merges);
 		if (threads == 1) first = parts;
 		else CHECK(parts == first);
 	}

@@ -151,6 +151,7 @@ struct Group
 	std::vector<Vec3> notches;   // the ends of its reflex edges
 	long              crossings = -1;  // faces crossing away from the cuts between its leaves (-1: not counted)
 	bool              alive = true;
+	int               origin = -1;   // the part's node it started as (merge_parts_further), else -1
 };
 
 struct Candidate
@@ -174,10 +175,12 @@ namespace {
 class Merger
 {
 public:
+	// `first`: none to start from the leaves and measure every pair; else the parts as they stand
+	// are the groups and the first pairs measured are those where `first` holds for one of the two.
 	Merger(Decomposition& D, double tau, const std::function<bool(int, const char*)>& progress, double seconds,
-	       MergeMemo* memo)
+	       MergeMemo* memo, const std::function<bool(int)>* first = nullptr)
 	    : D(D), tau(tau), eps(1e-9 * extent(D.nodes[0].mesh.V)), progress(progress), seconds(seconds),
-	      start(std::chrono::steady_clock::now()), memo(memo), heap(Later{this})
+	      start(std::chrono::steady_clock::now()), memo(memo), first(first), heap(Later{this})
 	{
 	}
 
@@ -188,7 +191,7 @@ public:
 		std::vector<std::pair<int, int>> pairs;
 		for (int a = 0; a < (int) groups.size(); ++a)
 			for (int b : nbr[a])
-				if (a < b) pairs.push_back({a, b});
+				if (a < b && (!first || (*first)(groups[a].origin) || (*first)(groups[b].origin))) pairs.push_back({a, b});
 		score(pairs);
 		greedy();
 		record();
@@ -202,6 +205,7 @@ private:
 	const double                                    seconds;   // 0: no time limit
 	const std::chrono::steady_clock::time_point     start;
 	MergeMemo* const                                memo;
+	const std::function<bool(int)>* const           first;
 	std::vector<Group>                              groups;
 	std::vector<std::set<int>>                      nbr;
 	std::map<std::pair<int, int>, int>              contact;   // neighbouring leaves -> the cut between them
@@ -233,10 +237,11 @@ private:
 	void start_groups()
 	{
 		for (int k = 0; k < (int) D.nodes.size(); ++k) by_path[D.nodes[k].path] = k;
-		for (int l : D.leaves()) {
+		for (int l : first ? D.parts() : D.leaves()) {
 			const Node& n = D.nodes[l];
 			Group       g;
-			g.leaves  = {l};
+			g.leaves  = n.merged.empty() ? std::vector<int>{l} : n.merged;
+			g.origin  = first ? l : -1;
 			g.part    = n;
 			g.content = memo ? content_hash(n.mesh) : 0;
 			// Only certified parts merge: an uncut leaf or one holding a kept cavity stays as it is.
@@ -256,7 +261,8 @@ private:
 	{
 		nbr.assign(groups.size(), {});
 		std::vector<int> index(D.nodes.size(), -1);
-		for (int g = 0; g < (int) groups.size(); ++g) index[groups[g].leaves[0]] = g;
+		for (int g = 0; g < (int) groups.size(); ++g)
+			for (int l : groups[g].leaves) index[l] = g;
 		for (const LeafContact& c : neighbouring_leaves(D)) {
 			contact[{c.a, c.b}] = c.cut;
 			const int ga = index[c.a], gb = index[c.b];
@@ -478,19 +484,24 @@ private:
 		}
 	}
 
-	// Each merged part becomes a node after the tree's, its leaves pointing to it.
+	// Each merged part becomes a node after the tree's, its leaves pointing to it. A merged part the
+	// merge started from and united further is dropped.
 	void record()
 	{
+		std::vector<char> drop(D.nodes.size(), 0);
 		for (Group& g : groups) {
-			if (!g.alive || g.leaves.size() < 2) continue;
+			if (g.origin >= 0 && !g.alive && !D.nodes[g.origin].merged.empty()) drop[g.origin] = 1;
+			if (!g.alive || g.leaves.size() < 2 || g.origin >= 0) continue;
 			Node& n      = g.part;
 			n.path       = D.nodes[g.leaves[0]].path + "+" + std::to_string(g.leaves.size() - 1);
 			n.merged     = g.leaves;
 			const int id = (int) D.nodes.size();
 			for (int l : g.leaves) D.nodes[l].part = id;
 			D.nodes.push_back(std::move(n));
+			drop.push_back(0);
 		}
-		D.merges = merges;
+		drop_nodes(D, drop);
+		D.merges = first ? D.merges + merges : merges;
 	}
 };
 
@@ -532,6 +543,34 @@ int merge_parts(Decomposition& D, double tau, const std::function<bool(int, cons
                 MergeMemo* memo)
 {
 	return Merger(D, tau, progress, seconds, memo).run();
+}
+
+int merge_parts_further(Decomposition& D, double tau, const std::function<bool(int)>& first,
+                        const std::function<bool(int, const char*)>& progress, double seconds, MergeMemo* memo)
+{
+	return Merger(D, tau, progress, seconds, memo, &first).run();
+}
+
+void drop_nodes(Decomposition& D, const std::vector<char>& drop)
+{
+	std::vector<int> id(D.nodes.size(), -1);
+	int              kept = 0;
+	for (size_t k = 0; k < D.nodes.size(); ++k)
+		if (!drop[k]) id[k] = kept++;
+	if (kept == (int) D.nodes.size()) return;
+	const auto map = [&](int k) { return k < 0 ? -1 : id[k]; };
+	std::vector<Node> nodes;
+	nodes.reserve(kept);
+	for (size_t k = 0; k < D.nodes.size(); ++k) {
+		if (drop[k]) continue;
+		Node& n    = D.nodes[k];
+		n.parent   = map(n.parent);
+		n.child[0] = map(n.child[0]), n.child[1] = map(n.child[1]);
+		n.part     = map(n.part);
+		for (int& l : n.merged) l = map(l);
+		nodes.push_back(std::move(n));
+	}
+	D.nodes = std::move(nodes);
 }
 
 } // namespace acd

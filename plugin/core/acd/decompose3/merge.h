@@ -34,6 +34,18 @@ public:
 int merge_parts(Decomposition& D, double tau, const std::function<bool(int, const char*)>& progress = {},
                 double seconds = 0, MergeMemo* memo = nullptr);
 
+// The merge again, from the parts as they stand (merged parts included) rather than the leaves: for a
+// tree grown in pieces, each merged on its own (the proxy search's parts searched again), so that the
+// pieces merge across. Only pairs where `first(part node)` holds for one of the two are measured at the
+// start (the rest were measured before); a merged part united further is dropped from D.nodes (the
+// ids after it shift). Returns the merges made; D.merges counts them too.
+int merge_parts_further(Decomposition& D, double tau, const std::function<bool(int)>& first,
+                        const std::function<bool(int, const char*)>& progress = {}, double seconds = 0,
+                        MergeMemo* memo = nullptr);
+
+// D without the nodes marked in `drop` (none of them a tree node another refers to), ids renumbered.
+void drop_nodes(Decomposition& D, const std::vector<char>& drop);
+
 // Neighbouring leaves (node ids a < b): on the two sides of the cut at node `cut`, their caps on its
 // plane overlapping with positive area.
 struct LeafContact

@@ -96,6 +96,7 @@ public:
 		root.mesh = solid.mesh;
 		D.nodes.push_back(std::move(root));
 		search_node(0, 0, o.merge_parts);
+		if (o.merge_parts && !retried.empty()) merge_across();
 		return D;
 	}
 
@@ -106,6 +107,7 @@ private:
 	const bool                                  keep;
 	const std::chrono::steady_clock::time_point start;
 	Decomposition                               D;
+	std::vector<std::string>                    retried;   // the paths of the leaves searched again
 
 	// The time limit's rest (0: none).
 	double left() const
@@ -149,6 +151,7 @@ private:
 		}
 		if (merge) merge_parts(P, o.tau, o.progress, left(), memo);
 		absorb(P);
+		D.merges -= P.merges;   // the proxy's merges count as unite_parts makes them on the solid
 		std::vector<int>   leaves;
 		std::map<int, int> reached;   // the proxy's leaves the replay reached: their nodes in D
 		report("Cutting the mesh by the planes found on its simplified copy");
@@ -162,8 +165,21 @@ private:
 		for (int l : rest)
 			if (needs_search(D.nodes[l]) && !D.time_limit_reached) {
 				++D.proxy_retries;
+				retried.push_back(D.nodes[l].path);
 				search_node(l, level, merge);
 			}
+	}
+
+	// A leaf searched again was merged within its own search only: its parts and their neighbours
+	// are merged across now, the pairs with a part below such a leaf measured first.
+	void merge_across()
+	{
+		report("Merging the parts searched again with their neighbours");
+		const std::function<bool(int)> below = [&](int p) {
+			const std::string& path = D.nodes[p].path;
+			return std::any_of(retried.begin(), retried.end(), [&](const std::string& r) { return path.rfind(r, 0) == 0; });
+		};
+		merge_parts_further(D, o.tau, below, o.progress, left(), memo);
 	}
 
 	// The proxy's merged parts made of the solid's leaves (all reached), glued on the cuts between
