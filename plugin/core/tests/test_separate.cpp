@@ -72,3 +72,27 @@ TEST_CASE("a plane that misses the solid does not split it")
 	SplitOutcome out;
 	CHECK_FALSE(separate(shapes::box(Vec3(0, 0, 0), Vec3(1, 1, 1)), plane(Vec3(1, 0, 0), 5), Vec3(5, 0, 0), out));
 }
+
+TEST_CASE("a prong cut off whole keeps its side while the rest, reaching across, weighs on the same side")
+{
+	// A U prism with a short prong (x 0..1, up to y 3) and a tall one (x 2..3, up to y 10), cut at
+	// y = 2 through the short prong's section: the prong's top comes off whole above the plane, and
+	// the rest (the base below, the tall prong through the plane) has most of its vertices above too.
+	const std::vector<Eigen::Vector2d> u = {{0, 0}, {3, 0}, {3, 10}, {2, 10}, {2, 1}, {1, 1}, {1, 3}, {0, 3}};
+	const TriMesh m  = shapes::extrude(u, 0, 1);
+	const Plane   pl = plane(Vec3(0, 1, 0), 2);
+	SplitOutcome  out;
+	REQUIRE(separate(m, pl, Vec3(0.5, 2, 0.5), out));
+	CHECK(out.regions_cut == 1);
+	for (const Vec3& v : out.parts[1].V) CHECK(out.plane.eval(v) >= -1e-9);   // the prong's top
+	double below = 0, above = 0;
+	for (const Vec3& v : out.parts[0].V) below = std::min(below, out.plane.eval(v)), above = std::max(above, out.plane.eval(v));
+	CHECK(below < -1);   // the rest holds the base
+	CHECK(above > 7);    // and the tall prong
+	const Solid top = make_solid(out.parts[1]), rest = make_solid(out.parts[0]);
+	CHECK(top.shells == 1);
+	CHECK(rest.shells == 1);
+	CHECK_NEAR(top.volume, 1.0, 1e-6);   // 1 x 1 x 1, the plane nudged at most 1e-6 of the size
+	CHECK_NEAR(top.volume + rest.volume, signed_volume(m), 1e-9 * signed_volume(m));
+	CHECK_NEAR(out.cap_area, 1.0, 1e-6);
+}

@@ -208,6 +208,29 @@ struct Section
 		return all;
 	}
 
+	// Two solids the vertex sums put on one side: a piece the cut region took off whole lies on one
+	// side only, while the rest, still joined through the regions left uncut, reaches across the plane
+	// and may weigh on the same side. The piece keeps its side and the rest takes the other. False
+	// when neither or both lie on one side.
+	bool one_sided(const std::vector<TriMesh>& solids, std::array<int, 2>& side) const
+	{
+		double scale = 0;
+		for (double x : s) scale = std::max(scale, std::abs(x));
+		const double tol = 1e-9 * scale;   // cap vertices lie on the plane up to rounding
+		int          whole = -1, count = 0;
+		for (int i = 0; i < 2; ++i) {
+			bool neg = true, pos = true;
+			for (const Vec3& p : solids[i].V) {
+				const double e = plane.eval(p);
+				neg &= e <= tol, pos &= e >= -tol;
+			}
+			if (neg != pos) whole = i, side[i] = pos ? 1 : 0, ++count;
+		}
+		if (count != 1) return false;
+		side[1 - whole] = 1 - side[whole];
+		return true;
+	}
+
 	// Two solids, one on each side (each cavity stays with the outer shell around it): 1 and the parts
 	// in `out`; 0 if still one solid (a handle: cut the next region too); -1 if it cannot split.
 	int split(const TriMesh& all, const std::vector<Tri>& caps, SplitOutcome& out) const
@@ -227,7 +250,7 @@ struct Section
 			for (const Vec3& p : solids[i].V) sum += plane.eval(p);
 			side[i] = sum > 0 ? 1 : 0;
 		}
-		if (side[0] == side[1]) return -1;
+		if (side[0] == side[1] && !one_sided(solids, side)) return -1;
 		for (int i = 0; i < 2; ++i) out.parts[side[i]] = std::move(solids[i]);
 		out.plane    = plane;
 		out.cap_area = 0;

@@ -11,6 +11,7 @@ namespace acd {
 struct SplitOutcome
 {
 	std::array<TriMesh, 2> parts;            // parts[0] on the plane's negative side, parts[1] positive
+	                                         // (one of them may reach across through regions left uncut)
 	Plane                  plane;            // the plane actually used (possibly nudged off vertices)
 	int                    regions_cut = 0;  // cross-section regions cut (1 unless a handle needed more)
 	double                 cap_area = 0;
