@@ -111,7 +111,7 @@ def hull_reach(V, F, slack, limit=None, max_triangles=2_000_000):
             return lower, np.inf   # a point beyond the limit: nothing more to prove
         corner = np.max([_point_triangle(tris[:, k], A[face], B[face], C[face]) for k in range(3)], axis=0)
         ub = np.minimum(d + R, corner)
-        bar = max(lower, limit if limit is not None else lower) + slack
+        bar = (limit if limit is not None else lower) + slack   # with a limit, lower is within limit + slack here
         keep = ub > bar
         upper = max(upper, float(ub[~keep].max()) if (~keep).any() else 0.0)
         tris = tris[keep]
