@@ -119,6 +119,15 @@ void take_measures(Node& n, const Measured& ms)
 
 } // namespace
 
+void renumber(Node& n, const std::vector<int>& id)
+{
+	const auto map = [&](int k) { return k < 0 ? -1 : id[k]; };
+	n.parent   = map(n.parent);
+	n.child[0] = map(n.child[0]), n.child[1] = map(n.child[1]);
+	n.part     = map(n.part);
+	for (int& l : n.merged) l = map(l);
+}
+
 std::vector<int> Decomposition::leaves() const
 {
 	std::vector<int> l;

@@ -108,6 +108,10 @@ inline bool certified(const Node& n, double tau)
 
 Decomposition decompose(const Solid& solid, const DecomposeOptions& options);
 
+// n's references to other nodes (parent, children, merged part, merged leaves) renumbered: old id k
+// becomes id[k] (-1 stays -1).
+void renumber(Node& n, const std::vector<int>& id);
+
 // decompose()'s stages, for the proxy search (proxy_search.h). The cut tree of a solid centred and at
 // unit size (no merge); and a node's measures from its mesh, as the cuts take them.
 Decomposition cut_tree(const Solid& solid, const DecomposeOptions& options);

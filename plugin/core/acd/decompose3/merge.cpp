@@ -558,17 +558,12 @@ void drop_nodes(Decomposition& D, const std::vector<char>& drop)
 	for (size_t k = 0; k < D.nodes.size(); ++k)
 		if (!drop[k]) id[k] = kept++;
 	if (kept == (int) D.nodes.size()) return;
-	const auto map = [&](int k) { return k < 0 ? -1 : id[k]; };
 	std::vector<Node> nodes;
 	nodes.reserve(kept);
 	for (size_t k = 0; k < D.nodes.size(); ++k) {
 		if (drop[k]) continue;
-		Node& n    = D.nodes[k];
-		n.parent   = map(n.parent);
-		n.child[0] = map(n.child[0]), n.child[1] = map(n.child[1]);
-		n.part     = map(n.part);
-		for (int& l : n.merged) l = map(l);
-		nodes.push_back(std::move(n));
+		renumber(D.nodes[k], id);
+		nodes.push_back(std::move(D.nodes[k]));
 	}
 	D.nodes = std::move(nodes);
 }

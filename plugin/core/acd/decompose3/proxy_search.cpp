@@ -396,19 +396,12 @@ private:
 			D.nodes.push_back(std::move(sub.nodes[k]));
 			D.nodes.back().path = base + D.nodes.back().path.substr(1);
 		}
-		const auto map = [&](int k) { return k < 0 ? -1 : id[k]; };
-		for (size_t k = 1; k < sub.nodes.size(); ++k) {
-			Node& n    = D.nodes[id[k]];
-			n.parent   = map(n.parent);
-			n.child[0] = map(n.child[0]), n.child[1] = map(n.child[1]);
-			n.part     = map(n.part);
-			for (int& l : n.merged) l = map(l);
-		}
-		Node& r  = sub.nodes[0];
+		for (size_t k = 1; k < sub.nodes.size(); ++k) renumber(D.nodes[id[k]], id);
+		Node& r = sub.nodes[0];
+		renumber(r, id);
 		r.parent = D.nodes[at].parent;
 		r.path   = base;
-		r.child[0] = map(r.child[0]), r.child[1] = map(r.child[1]);
-		r.mesh     = std::move(D.nodes[at].mesh);
+		r.mesh   = std::move(D.nodes[at].mesh);
 		D.nodes[at] = std::move(r);
 	}
 };
