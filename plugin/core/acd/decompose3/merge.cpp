@@ -151,6 +151,7 @@ struct Group
 	std::vector<Vec3> notches;   // the ends of its reflex edges
 	long              crossings = -1;  // faces crossing away from the cuts between its leaves (-1: not counted)
 	bool              alive = true;
+	bool              ready = false;   // `extreme` and `notches` found
 	int               origin = -1;   // the part's node it started as (merge_parts_further), else -1
 };
 
@@ -248,10 +249,20 @@ private:
 			g.alive = n.cavities == 0 && certified(n, tau);
 			groups.push_back(std::move(g));
 		}
-		parallel_for(groups.size(), [&](size_t i) {
-			if (!groups[i].alive) return;
-			groups[i].extreme = extreme_points(groups[i].part.mesh.V);
-			groups[i].notches = notch_points(groups[i].part.mesh, Topology(groups[i].part.mesh));
+	}
+
+	// The hull vertices and notches of the pairs' groups, where not yet found: only for groups some
+	// pair is measured with (merge_parts_further starts from a few).
+	void find_extremes(const std::vector<std::pair<int, int>>& pairs)
+	{
+		std::vector<int> todo;
+		for (const auto& [a, b] : pairs)
+			for (int g : {a, b})
+				if (!groups[g].ready) groups[g].ready = true, todo.push_back(g);
+		parallel_for(todo.size(), [&](size_t i) {
+			Group& g  = groups[todo[i]];
+			g.extreme = extreme_points(g.part.mesh.V);
+			g.notches = notch_points(g.part.mesh, Topology(g.part.mesh));
 		});
 	}
 
@@ -390,6 +401,7 @@ private:
 		n.mesh      = std::move(s.mesh);
 		g.extreme   = extreme_points(corners);
 		g.crossings = crossings;
+		g.ready     = true;
 		g.leaves    = std::move(leaves);
 		g.content   = memo ? content_hash(n.mesh) : 0;
 		return g;
@@ -402,15 +414,17 @@ private:
 	bool notch_deeper_than_tau(const Group& A, const Group& B, const ConvexHull& h, const std::vector<Plane>& planes) const
 	{
 		const double size = extent(h.points), seam = 1e-6 * size, deep = tau + 1e-6 * size;
+		int          hint = -1;   // a hull triangle
 		for (const Group* G : {&A, &B})
 			for (const Vec3& x : G->notches) {
 				bool off = true;
 				for (const Plane& pl : planes) off &= std::abs(pl.eval(x)) > seam;
 				if (!off) continue;
-				double d = INFINITY;
-				for (const Plane& pl : h.facet_plane)
-					if ((d = std::min(d, std::max(0.0, -pl.eval(x)))) <= deep) break;
-				if (d > deep) return true;
+				// Inside the hull the distance to its boundary is the least distance to a facet's
+				// plane: the facet that held the last notch (notches lie along the surface, near each
+				// other) often settles it, else the hull's own distance tree does.
+				if (hint >= 0 && -h.facet_plane[h.triangle_facet[hint]].eval(x) <= deep) continue;
+				if (h.distance_to_boundary(x, &hint, hint) > deep) return true;
 			}
 		return false;
 	}
@@ -432,6 +446,7 @@ private:
 	// heard between batches) and queue those that pass.
 	void score(const std::vector<std::pair<int, int>>& pairs)
 	{
+		find_extremes(pairs);
 		const size_t batch = 4 * available_threads();
 		for (size_t from = 0; from < pairs.size() && !out_of_time(); from += batch) {
 			const size_t                      n = std::min(batch, pairs.size() - from);
