@@ -263,7 +263,7 @@ TEST_CASE("merge further: from the leaves it is the merge; parts taken apart mer
 
 	// From the leaves, every pair measured first: the same parts.
 	Decomposition again = cut;
-	CHECK(merge_parts_further(again, o.tau, [](int) { return true; }) == m);
+	CHECK(merge_parts_further(again, o.tau, [](int, int) { return true; }) == m);
 	CHECK(part_paths(again) == part_paths(D));
 
 	// Two merged parts taken apart, as a search of them again leaves its own parts: their leaves
@@ -283,13 +283,19 @@ TEST_CASE("merge further: from the leaves it is the merge; parts taken apart mer
 	const size_t before = D.parts().size();
 	REQUIRE(before > merged);
 	check_partition(D, o.tau);
-	const int further = merge_parts_further(D, o.tau, [&](int p) { return apart.count(D.nodes[p].path) > 0; });
+	// Only the pairs `first` names are measured at the start: none named, none merged.
+	Decomposition none = D;
+	CHECK(merge_parts_further(none, o.tau, [](int, int) { return false; }) == 0);
+	CHECK(none.parts().size() == before);
+	const int further = merge_parts_further(D, o.tau, [&](int a, int b) {
+		return apart.count(D.nodes[a].path) > 0 || apart.count(D.nodes[b].path) > 0;
+	});
 	CHECK(further > 0);
 	CHECK(D.parts().size() == before - further);
 	CHECK(D.parts().size() == D.leaves().size() - D.merges);
 	check_partition(D, o.tau);
 	// The greedy merge leaves no neighbouring pair whose union passes: merging on finds none.
 	const size_t after = D.parts().size();
-	CHECK(merge_parts_further(D, o.tau, [](int) { return true; }) == 0);
+	CHECK(merge_parts_further(D, o.tau, [](int, int) { return true; }) == 0);
 	CHECK(D.parts().size() == after);
 }

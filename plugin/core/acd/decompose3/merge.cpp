@@ -15,6 +15,7 @@
 #include <cmath>
 #include <cstdio>
 #include <array>
+#include <atomic>
 #include <cstdint>
 #include <cstring>
 #include <map>
@@ -177,9 +178,9 @@ class Merger
 {
 public:
 	// `first`: none to start from the leaves and measure every pair; else the parts as they stand
-	// are the groups and the first pairs measured are those where `first` holds for one of the two.
+	// are the groups and the first pairs measured are those `first` holds for.
 	Merger(Decomposition& D, double tau, const std::function<bool(int, const char*)>& progress, double seconds,
-	       MergeMemo* memo, const std::function<bool(int)>* first = nullptr)
+	       MergeMemo* memo, const std::function<bool(int, int)>* first = nullptr)
 	    : D(D), tau(tau), eps(1e-9 * extent(D.nodes[0].mesh.V)), progress(progress), seconds(seconds),
 	      start(std::chrono::steady_clock::now()), memo(memo), first(first), heap(Later{this})
 	{
@@ -192,7 +193,7 @@ public:
 		std::vector<std::pair<int, int>> pairs;
 		for (int a = 0; a < (int) groups.size(); ++a)
 			for (int b : nbr[a])
-				if (a < b && (!first || (*first)(groups[a].origin) || (*first)(groups[b].origin))) pairs.push_back({a, b});
+				if (a < b && (!first || (*first)(groups[a].origin, groups[b].origin))) pairs.push_back({a, b});
 		score(pairs);
 		greedy();
 		record();
@@ -206,7 +207,7 @@ private:
 	const double                                    seconds;   // 0: no time limit
 	const std::chrono::steady_clock::time_point     start;
 	MergeMemo* const                                memo;
-	const std::function<bool(int)>* const           first;
+	const std::function<bool(int, int)>* const      first;
 	std::vector<Group>                              groups;
 	std::vector<std::set<int>>                      nbr;
 	std::map<std::pair<int, int>, int>              contact;   // neighbouring leaves -> the cut between them
@@ -442,26 +443,42 @@ private:
 		if (progress && !progress(99, msg)) throw Error(Error::Cancelled, "The decomposition was cancelled.");
 	}
 
-	// Unite the pairs (on all cores, a batch at a time so that progress and the time limit are
-	// heard between batches) and queue those that pass.
+	// Unite the pairs on all cores and queue those that pass. The largest unions are started first and
+	// no batch waits for its slowest, so no core idles while another measures a large union; progress
+	// and the time limit are heard on the calling thread between its pairs.
 	void score(const std::vector<std::pair<int, int>>& pairs)
 	{
 		find_extremes(pairs);
-		const size_t batch = 4 * available_threads();
-		for (size_t from = 0; from < pairs.size() && !out_of_time(); from += batch) {
-			const size_t                      n = std::min(batch, pairs.size() - from);
-			std::vector<std::optional<Group>> u(n);
-			parallel_for(n, [&](size_t i) { u[i] = unite(pairs[from + i].first, pairs[from + i].second); });
-			for (size_t i = 0; i < n; ++i) {
-				if (!u[i]) continue;
-				pool.push_back({pairs[from + i].first, pairs[from + i].second, std::move(*u[i])});
-				heap.push((int) pool.size() - 1);
+		const auto faces = [&](size_t i) { return groups[pairs[i].first].part.mesh.F.size() + groups[pairs[i].second].part.mesh.F.size(); };
+		std::vector<size_t> order(pairs.size());
+		for (size_t i = 0; i < order.size(); ++i) order[i] = i;
+		std::stable_sort(order.begin(), order.end(), [&](size_t i, size_t j) { return faces(i) > faces(j); });
+		std::vector<std::optional<Group>> u(pairs.size());
+		std::atomic<size_t>               measured{0};
+		std::atomic<bool>                 stop{out_of_time()};
+		const std::thread::id             caller = std::this_thread::get_id();
+		parallel_for(order.size(), [&](size_t k) {
+			if (stop) return;
+			u[order[k]]    = unite(pairs[order[k]].first, pairs[order[k]].second);
+			const size_t n = ++measured;
+			if (std::this_thread::get_id() != caller) return;
+			try {
+				if (out_of_time()) stop = true;
+				if (pairs.size() > 4 * available_threads()) {
+					char msg[96];
+					std::snprintf(msg, sizeof msg, "Merging neighbouring parts: %zu of %zu pairs measured", n, pairs.size());
+					report(msg);
+				}
 			}
-			if (pairs.size() > batch) {
-				char msg[96];
-				std::snprintf(msg, sizeof msg, "Merging neighbouring parts: %zu of %zu pairs measured", from + n, pairs.size());
-				report(msg);
+			catch (...) {
+				stop = true;
+				throw;
 			}
+		});
+		for (size_t i = 0; i < pairs.size(); ++i) {
+			if (!u[i]) continue;
+			pool.push_back({pairs[i].first, pairs[i].second, std::move(*u[i])});
+			heap.push((int) pool.size() - 1);
 		}
 	}
 
@@ -560,7 +577,7 @@ int merge_parts(Decomposition& D, double tau, const std::function<bool(int, cons
 	return Merger(D, tau, progress, seconds, memo).run();
 }
 
-int merge_parts_further(Decomposition& D, double tau, const std::function<bool(int)>& first,
+int merge_parts_further(Decomposition& D, double tau, const std::function<bool(int, int)>& first,
                         const std::function<bool(int, const char*)>& progress, double seconds, MergeMemo* memo)
 {
 	return Merger(D, tau, progress, seconds, memo, &first).run();

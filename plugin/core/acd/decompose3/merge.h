@@ -36,10 +36,10 @@ int merge_parts(Decomposition& D, double tau, const std::function<bool(int, cons
 
 // The merge again, from the parts as they stand (merged parts included) rather than the leaves: for a
 // tree grown in pieces, each merged on its own (the proxy search's parts searched again), so that the
-// pieces merge across. Only pairs where `first(part node)` holds for one of the two are measured at the
-// start (the rest were measured before); a merged part united further is dropped from D.nodes (the
-// ids after it shift). Returns the merges made; D.merges counts them too.
-int merge_parts_further(Decomposition& D, double tau, const std::function<bool(int)>& first,
+// pieces merge across. Only the neighbouring parts (part nodes a, b) for which `first(a, b)` holds are
+// measured at the start (the rest were measured before); a merged part united further is dropped from
+// D.nodes (the ids after it shift). Returns the merges made; D.merges counts them too.
+int merge_parts_further(Decomposition& D, double tau, const std::function<bool(int, int)>& first,
                         const std::function<bool(int, const char*)>& progress = {}, double seconds = 0,
                         MergeMemo* memo = nullptr);
 

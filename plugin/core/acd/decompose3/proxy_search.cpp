@@ -15,6 +15,7 @@
 #include <array>
 #include <map>
 #include <optional>
+#include <set>
 
 namespace acd {
 
@@ -108,6 +109,7 @@ private:
 	const std::chrono::steady_clock::time_point start;
 	Decomposition                               D;
 	std::vector<std::string>                    retried;   // the paths of the leaves searched again
+	std::set<std::string>                       as_is;     // those of them searched as they are
 
 	// The time limit's rest (0: none).
 	double left() const
@@ -161,7 +163,10 @@ private:
 		std::vector<int> rest;
 		for (int l : leaves)
 			if (!united[l]) rest.push_back(l);
-		parallel_for(rest.size(), [&](size_t i) { measure_node(D.nodes[rest[i]], keep, o.tau); });
+		// The largest first, so that no core is left measuring one alone at the end.
+		std::vector<int> by_size = rest;
+		std::stable_sort(by_size.begin(), by_size.end(), [&](int a, int b) { return D.nodes[a].mesh.F.size() > D.nodes[b].mesh.F.size(); });
+		parallel_for(by_size.size(), [&](size_t i) { measure_node(D.nodes[by_size[i]], keep, o.tau); });
 		for (int l : rest)
 			if (needs_search(D.nodes[l]) && !D.time_limit_reached) {
 				++D.proxy_retries;
@@ -171,15 +176,25 @@ private:
 	}
 
 	// A leaf searched again was merged within its own search only: its parts and their neighbours
-	// are merged across now, the pairs with a part below such a leaf measured first.
+	// are merged across now, the pairs with a part below such a leaf measured first. Two parts of one
+	// leaf searched as it is were measured together by that search's merge on the mesh itself (and
+	// stayed apart): they are not measured again.
 	void merge_across()
 	{
 		report("Merging the parts searched again with their neighbours");
-		const std::function<bool(int)> below = [&](int p) {
+		const auto within = [&](int p) {   // the deepest leaf searched again that p lies below, or none
 			const std::string& path = D.nodes[p].path;
-			return std::any_of(retried.begin(), retried.end(), [&](const std::string& r) { return path.rfind(r, 0) == 0; });
+			const std::string* in   = nullptr;
+			for (const std::string& r : retried)
+				if (path.rfind(r, 0) == 0 && (!in || r.size() > in->size())) in = &r;
+			return in;
 		};
-		merge_parts_further(D, o.tau, below, o.progress, left(), memo);
+		const std::function<bool(int, int)> across = [&](int a, int b) {
+			const std::string *ra = within(a), *rb = within(b);
+			if (!ra && !rb) return false;
+			return !(ra && rb && *ra == *rb && as_is.count(*ra));
+		};
+		merge_parts_further(D, o.tau, across, o.progress, left(), memo);
 	}
 
 	// The proxy's merged parts made of the solid's leaves (all reached), glued on the cuts between
@@ -291,6 +306,7 @@ private:
 
 	void search_as_is(int at, bool merge)
 	{
+		as_is.insert(D.nodes[at].path);
 		Solid s;
 		s.mesh   = D.nodes[at].mesh;
 		s.volume = signed_volume(s.mesh);
