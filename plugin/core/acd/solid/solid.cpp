@@ -283,7 +283,8 @@ Solid make_solid(const TriMesh& in)
 	checked_faces(in, remap, s);
 	check_edges(s.mesh);
 	split_vertex_fans(s);
-	s.self_intersections = (long) self_crossings(s.mesh, diag).size();
+	s.crossing_faces     = self_crossings(s.mesh, diag);
+	s.self_intersections = (long) s.crossing_faces.size();
 	orient(s, diag);
 	return s;
 }
@@ -301,7 +302,10 @@ long crossings_off_cuts(const Solid& s, const std::vector<Plane>& cuts, double e
 		return hi <= eps ? -1 : lo >= -eps ? 1 : 0;
 	};
 	long n = 0;
-	for (const auto& [f, g] : self_crossings(s.mesh, bbox_diagonal(s.mesh.V))) {
+	// The pairs make_solid found (a solid built otherwise has them found here).
+	const std::vector<std::pair<int, int>> found =
+	    (long) s.crossing_faces.size() == s.self_intersections ? std::vector<std::pair<int, int>>() : self_crossings(s.mesh, bbox_diagonal(s.mesh.V));
+	for (const auto& [f, g] : found.empty() ? s.crossing_faces : found) {
 		bool apart = false;
 		for (const Plane& pl : cuts) {
 			const int a = side(s.mesh.F[f], pl), b = side(s.mesh.F[g], pl);
