@@ -291,7 +291,6 @@ Solid make_solid(const TriMesh& in)
 
 long crossings_off_cuts(const Solid& s, const std::vector<Plane>& cuts, double eps)
 {
-	if (s.self_intersections == 0) return 0;
 	const auto side = [&](const Tri& t, const Plane& pl) {
 		double lo = INFINITY, hi = -INFINITY;
 		for (int v : t) lo = std::min(lo, pl.eval(s.mesh.V[v])), hi = std::max(hi, pl.eval(s.mesh.V[v]));
@@ -302,10 +301,7 @@ long crossings_off_cuts(const Solid& s, const std::vector<Plane>& cuts, double e
 		return hi <= eps ? -1 : lo >= -eps ? 1 : 0;
 	};
 	long n = 0;
-	// The pairs make_solid found (a solid built otherwise has them found here).
-	const std::vector<std::pair<int, int>> found =
-	    (long) s.crossing_faces.size() == s.self_intersections ? std::vector<std::pair<int, int>>() : self_crossings(s.mesh, bbox_diagonal(s.mesh.V));
-	for (const auto& [f, g] : found.empty() ? s.crossing_faces : found) {
+	for (const auto& [f, g] : s.crossing_faces) {
 		bool apart = false;
 		for (const Plane& pl : cuts) {
 			const int a = side(s.mesh.F[f], pl), b = side(s.mesh.F[g], pl);

@@ -22,7 +22,7 @@ struct Solid
 	int              reoriented_shells = 0; // shells whose orientation disagreed with their nesting
 	int              cavities = 0;          // shells nested inside another an odd number of times
 	long             self_intersections = 0;   // pairs of faces crossing away from shared corners
-	std::vector<std::pair<int, int>> crossing_faces;   // those pairs (mesh.F indices), as make_solid found them
+	std::vector<std::pair<int, int>> crossing_faces;   // those pairs (mesh.F indices); their count is the above
 	double           volume = 0;
 };
 
