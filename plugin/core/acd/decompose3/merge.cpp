@@ -152,7 +152,6 @@ struct Group
 	std::vector<Vec3> notches;   // the ends of its reflex edges
 	long              crossings = -1;  // faces crossing away from the cuts between its leaves (-1: not counted)
 	bool              alive = true;
-	bool              ready = false;   // `extreme` and `notches` found
 	int               origin = -1;   // the part's node it started as (merge_parts_further), else -1
 };
 
@@ -252,14 +251,16 @@ private:
 		}
 	}
 
-	// The hull vertices and notches of the pairs' groups, where not yet found: only for groups some
-	// pair is measured with (merge_parts_further starts from a few).
+	// The hull vertices and notches of the pairs' groups, where not yet found (a solid's hull has
+	// vertices): only for groups some pair is measured with (merge_parts_further starts from a few).
 	void find_extremes(const std::vector<std::pair<int, int>>& pairs)
 	{
 		std::vector<int> todo;
 		for (const auto& [a, b] : pairs)
 			for (int g : {a, b})
-				if (!groups[g].ready) groups[g].ready = true, todo.push_back(g);
+				if (groups[g].extreme.empty()) todo.push_back(g);
+		std::sort(todo.begin(), todo.end());
+		todo.erase(std::unique(todo.begin(), todo.end()), todo.end());
 		parallel_for(todo.size(), [&](size_t i) {
 			Group& g  = groups[todo[i]];
 			g.extreme = extreme_points(g.part.mesh.V);
@@ -402,7 +403,6 @@ private:
 		n.mesh      = std::move(s.mesh);
 		g.extreme   = extreme_points(corners);
 		g.crossings = crossings;
-		g.ready     = true;
 		g.leaves    = std::move(leaves);
 		g.content   = memo ? content_hash(n.mesh) : 0;
 		return g;
