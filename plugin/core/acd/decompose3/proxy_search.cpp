@@ -11,11 +11,13 @@
 #include "acd/solid/solid.h"
 
 #include <algorithm>
-#include <chrono>
 #include <array>
+#include <atomic>
+#include <chrono>
 #include <map>
 #include <optional>
 #include <set>
+#include <thread>
 
 namespace acd {
 
@@ -90,7 +92,7 @@ public:
 	// and certified on the solid from the root down.
 	Decomposition run(const Solid& solid)
 	{
-		if (o.max_parts > 0 || (int) solid.mesh.F.size() <= ps.above) return cut_and_merge(solid, o.merge_parts);
+		if (o.max_parts > 0 || (int) solid.mesh.F.size() <= ps.above) return cut_and_merge(solid, o.merge_parts, o);
 		D.tau = o.tau;
 		Node root;
 		root.path = "0";
@@ -167,12 +169,50 @@ private:
 		std::vector<int> by_size = rest;
 		std::stable_sort(by_size.begin(), by_size.end(), [&](int a, int b) { return D.nodes[a].mesh.F.size() > D.nodes[b].mesh.F.size(); });
 		parallel_for(by_size.size(), [&](size_t i) { measure_node(D.nodes[by_size[i]], keep, o.tau); });
+		std::vector<int> again;
 		for (int l : rest)
-			if (needs_search(D.nodes[l]) && !D.time_limit_reached) {
-				++D.proxy_retries;
-				retried.push_back(D.nodes[l].path);
+			if (needs_search(D.nodes[l])) again.push_back(l);
+		if (!D.time_limit_reached) search_again(again, level, merge);
+	}
+
+	// True if leaf `at` is searched as it is from proxy level `level` on (search_node's first test).
+	bool as_is_from(int at, int level) const
+	{
+		return level >= ps.levels || (int) D.nodes[at].mesh.F.size() <= std::max(ps.above, 2 * (ps.faces << (2 * level)));
+	}
+
+	// The leaves that failed, searched again in leaf order. Those searched as they are go all at once
+	// (largest first), their trees grafted in leaf order after; the rest in turn. The reports go
+	// through the calling thread, and a cancel there reaches the other searches at their next report.
+	void search_again(const std::vector<int>& again, int level, bool merge)
+	{
+		std::vector<int> now;
+		for (int l : again)
+			if (as_is_from(l, level)) now.push_back(l);
+		std::stable_sort(now.begin(), now.end(), [&](int a, int b) { return D.nodes[a].mesh.F.size() > D.nodes[b].mesh.F.size(); });
+		std::vector<Decomposition> found(now.size());
+		std::map<int, size_t>      at;   // leaf -> its search in `found`
+		for (size_t i = 0; i < now.size(); ++i) at[now[i]] = i;
+		std::atomic<bool>     cancelled{false};
+		const std::thread::id caller = std::this_thread::get_id();
+		DecomposeOptions      eo     = o;
+		eo.progress                  = [&](int pct, const char* msg) {
+            if (std::this_thread::get_id() == caller && o.progress && !o.progress(pct, msg)) cancelled = true;
+            return !cancelled.load();
+		};
+		parallel_for(now.size(), [&](size_t i) { found[i] = cut_and_merge(solid_of(now[i]), merge, eo); });
+		for (int l : again) {
+			if (!at.count(l) && D.time_limit_reached) continue;
+			++D.proxy_retries;
+			retried.push_back(D.nodes[l].path);
+			if (!at.count(l)) {
 				search_node(l, level, merge);
+				continue;
 			}
+			as_is.insert(D.nodes[l].path);
+			absorb(found[at[l]]);
+			graft(l, found[at[l]]);
+		}
 	}
 
 	// A leaf searched again was merged within its own search only: its parts and their neighbours
@@ -307,22 +347,29 @@ private:
 	void search_as_is(int at, bool merge)
 	{
 		as_is.insert(D.nodes[at].path);
-		Solid s;
-		s.mesh   = D.nodes[at].mesh;
-		s.volume = signed_volume(s.mesh);
-		face_components(s.mesh, &s.shells);
-		Decomposition sub = cut_and_merge(s, merge);
+		Decomposition sub = cut_and_merge(solid_of(at), merge, o);
 		absorb(sub);
 		graft(at, sub);
 	}
 
-	// The search on `s` itself (and its merge), within the time left: the merge gets what the cuts left.
-	Decomposition cut_and_merge(const Solid& s, bool merge) const
+	// Node `at`'s mesh as a solid (a part of the input solid: closed and oriented as it was).
+	Solid solid_of(int at) const
 	{
-		DecomposeOptions eo   = o;
+		Solid s;
+		s.mesh   = D.nodes[at].mesh;
+		s.volume = signed_volume(s.mesh);
+		face_components(s.mesh, &s.shells);
+		return s;
+	}
+
+	// The search on `s` itself (and its merge), within the time left: the merge gets what the cuts left.
+	// `with`: the options, but for their time limit.
+	Decomposition cut_and_merge(const Solid& s, bool merge, const DecomposeOptions& with) const
+	{
+		DecomposeOptions eo   = with;
 		eo.time_limit_seconds = left();
 		Decomposition sub     = cut_tree(s, eo);
-		if (merge) merge_parts(sub, o.tau, o.progress, left(), memo);
+		if (merge) merge_parts(sub, o.tau, with.progress, left(), memo);
 		return sub;
 	}
 

@@ -1,6 +1,7 @@
 #include "acd/solid/solid.h"
 #include "acd/mesh/disjoint_sets.h"
 #include "acd/mesh/measures.h"
+#include "acd/mesh/parallel.h"
 #include "acd/mesh/topology.h"
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
@@ -16,28 +17,36 @@ namespace acd {
 
 namespace {
 
-// Directed edges (a, b) as one sortable key, with the face that holds them: sorted arrays instead of
-// hash maps keep the checks of a mesh with millions of faces to a fraction of a second.
-using EdgeKey = unsigned long long;
-EdgeKey edge_key(int a, int b)
+// Each corner's edge (corner 3f+k runs from F[f][k] to F[f][k+1]) found with the other uses of its
+// undirected edge by sorting one array of keys: no hash map and no search per edge, which keeps the
+// checks of a mesh with millions of faces to a fraction of a second.
+struct EdgeUses
 {
-	return (EdgeKey) (unsigned) a << 32 | (unsigned) b;
-}
-std::vector<std::pair<EdgeKey, int>> sorted_directed_edges(const std::vector<Tri>& F)
+	long             boundary = 0, nonmanifold = 0, misoriented = 0;   // undirected edges used once, > twice, twice one way
+	std::vector<int> mate;   // per corner, the corner using its edge the other way (-1: none, or not one)
+};
+EdgeUses edge_uses(const std::vector<Tri>& F)
 {
-	std::vector<std::pair<EdgeKey, int>> e;
+	using Key = unsigned long long;
+	std::vector<std::pair<Key, int>> e;
 	e.reserve(F.size() * 3);
 	for (int f = 0; f < (int) F.size(); ++f)
-		for (int k = 0; k < 3; ++k) e.push_back({edge_key(F[f][k], F[f][(k + 1) % 3]), f});
+		for (int k = 0; k < 3; ++k) {
+			const unsigned a = (unsigned) F[f][k], b = (unsigned) F[f][(k + 1) % 3];
+			e.push_back({(Key) std::min(a, b) << 32 | std::max(a, b), 3 * f + k});
+		}
 	std::sort(e.begin(), e.end());
-	return e;
-}
-// The uses of directed edge k in sorted_directed_edges' array, with their faces.
-std::pair<std::vector<std::pair<EdgeKey, int>>::const_iterator, std::vector<std::pair<EdgeKey, int>>::const_iterator>
-uses_of(const std::vector<std::pair<EdgeKey, int>>& edges, EdgeKey k)
-{
-	return {std::lower_bound(edges.begin(), edges.end(), std::make_pair(k, INT_MIN)),
-	        std::upper_bound(edges.begin(), edges.end(), std::make_pair(k, INT_MAX))};
+	EdgeUses u;
+	u.mate.assign(e.size(), -1);
+	const auto from = [&](int c) { return F[c / 3][c % 3]; };
+	for (size_t i = 0, j; i < e.size(); i = j) {
+		for (j = i + 1; j < e.size() && e[j].first == e[i].first;) ++j;
+		if (j - i == 1) ++u.boundary;
+		else if (j - i > 2) ++u.nonmanifold;
+		else if (from(e[i].second) == from(e[i + 1].second)) ++u.misoriented;
+		else u.mate[e[i].second] = e[i + 1].second, u.mate[e[i + 1].second] = e[i].second;
+	}
+	return u;
 }
 
 [[noreturn]] void invalid(const std::string& msg, Error::Code code = Error::Unspecified, long count = 0)
@@ -154,25 +163,12 @@ void checked_faces(const TriMesh& in, const std::vector<int>& remap, Solid& s)
 		invalid(std::to_string(dup) + " faces duplicate other faces.", Error::DuplicateFaces, dup);
 }
 
-// Edge use: each undirected edge used by exactly two faces, once in each direction.
-void check_edges(const TriMesh& m)
+// Edge use: each undirected edge used by exactly two faces, once in each direction. Returns each
+// corner's mate.
+std::vector<int> check_edges(const TriMesh& m)
 {
-	const std::vector<std::pair<EdgeKey, int>> directed = sorted_directed_edges(m.F);
-	long boundary = 0, nonmanifold = 0, misoriented = 0;
-	for (size_t i = 0; i < directed.size();) {
-		const EdgeKey e = directed[i].first;
-		size_t        j = i;
-		while (j < directed.size() && directed[j].first == e) ++j;
-		const int n = (int) (j - i), a = (int) (e >> 32), b = (int) (e & 0xffffffffu);
-		i           = j;
-		const auto back  = uses_of(directed, edge_key(b, a));
-		const int  total = n + (int) (back.second - back.first);
-		if (total == 1) ++boundary;
-		else if (total > 2) {
-			if (a < b) ++nonmanifold;
-		}
-		else if (n == 2) ++misoriented;   // both uses in the same direction
-	}
+	EdgeUses   u        = edge_uses(m.F);
+	const long boundary = u.boundary, nonmanifold = u.nonmanifold, misoriented = u.misoriented;
 	if (boundary > 0)
 		invalid("The mesh is open: it has " + std::to_string(boundary) +
 		            " boundary edges. The decomposition needs a closed (watertight) solid (preprocessing 'auto' "
@@ -186,17 +182,17 @@ void check_edges(const TriMesh& m)
 		invalid("The mesh's faces are not consistently oriented (" + std::to_string(misoriented) +
 		            " edges are used twice in the same direction).",
 		        Error::Misoriented, misoriented);
+	return std::move(u.mate);
 }
 
 // Split non-manifold vertices: walk each fan of corners around a vertex across its edges; a vertex
 // reached by a second fan gets a copy of its own.
-void split_vertex_fans(Solid& s)
+void split_vertex_fans(Solid& s, const std::vector<int>& mate)
 {
 	const std::vector<Tri> orig = s.mesh.F;
 	const int              nf   = (int) orig.size();
-	const std::vector<std::pair<EdgeKey, int>> face_of = sorted_directed_edges(orig);   // directed edge -> its face
-	std::vector<char> seen(nf * 3, 0);
-	std::vector<char> has_fan(s.mesh.V.size(), 0);
+	std::vector<char>      seen(nf * 3, 0);
+	std::vector<char>      has_fan(s.mesh.V.size(), 0);
 	for (int f = 0; f < nf; ++f)
 		for (int k = 0; k < 3; ++k) {
 			if (seen[f * 3 + k]) continue;
@@ -213,13 +209,11 @@ void split_vertex_fans(Solid& s)
 			while (!seen[cf * 3 + ck]) {
 				seen[cf * 3 + ck] = 1;
 				s.mesh.F[cf][ck]  = target;
-				// this face holds the directed edge (prev -> v); the next face holds (v -> prev)
-				const int prev = orig[cf][(ck + 2) % 3];
-				const auto next = uses_of(face_of, edge_key(v, prev));
-				if (next.first == next.second) break;
-				cf = next.first->second;
-				ck = 0;
-				while (orig[cf][ck] != v) ++ck;
+				// this face's corner (ck + 2) holds the edge prev -> v; its mate, v -> prev, starts at v
+				const int next = mate[3 * cf + (ck + 2) % 3];
+				if (next < 0) break;
+				cf = next / 3;
+				ck = next % 3;
 			}
 		}
 }
@@ -229,27 +223,72 @@ void split_vertex_fans(Solid& s)
 // Cuts assume the surface bounds one solid; overlapping or folded sheets can make parts that are not
 // closed. Counted, not refused: scanned meshes often cross themselves a little (the host decides;
 // the decomposition itself never returns an open part).
+//
+// A large mesh is searched in slabs on all cores: faces in order of their boxes' low end along the
+// longest axis, a run of kSlab of them with the faces after it that its boxes reach. A pair is kept by
+// the slab of its earlier face, so each is found once; the sorted pairs do not depend on the slabs.
 std::vector<std::pair<int, int>> self_crossings(const TriMesh& m, double diag)
 {
 	using K = CGAL::Exact_predicates_inexact_constructions_kernel;
+	constexpr size_t kSlab = 40000;
 	std::vector<K::Point_3> pts;
 	pts.reserve(m.V.size());
 	for (const Vec3& p : m.V) pts.emplace_back(p.x(), p.y(), p.z());
-	std::vector<std::array<std::size_t, 3>> tris;
-	tris.reserve(m.F.size());
-	for (const Tri& t : m.F) tris.push_back({(std::size_t) t[0], (std::size_t) t[1], (std::size_t) t[2]});
-	std::vector<std::pair<std::size_t, std::size_t>> pairs;
-	CGAL::Polygon_mesh_processing::triangle_soup_self_intersections(pts, tris, std::back_inserter(pairs));
+	const size_t nf = m.F.size();
+	Eigen::AlignedBox3d box;
+	for (const Vec3& p : m.V) box.extend(p);
+	int axis = 0;
+	box.sizes().maxCoeff(&axis);
+	std::vector<std::pair<double, int>> low(nf);   // (box's low end, face)
+	std::vector<double>                 high(nf);  // by face
+	for (size_t f = 0; f < nf; ++f) {
+		const Tri& t = m.F[f];
+		const double a = m.V[t[0]][axis], b = m.V[t[1]][axis], c = m.V[t[2]][axis];
+		low[f]  = {std::min({a, b, c}), (int) f};
+		high[f] = std::max({a, b, c});
+	}
+	std::sort(low.begin(), low.end());
+	// Slab s: faces [s kSlab, end[s]) of `low`, its own the first kSlab. Boxes long enough to reach far
+	// past their slab make the slabs overlap; then one search of the whole costs less.
+	const size_t        slabs = std::max<size_t>(1, (nf + kSlab - 1) / kSlab);
+	std::vector<size_t> end(slabs, nf);
+	size_t              searched = 0;
+	for (size_t s = 0; s < slabs && slabs > 1; ++s) {
+		double reach = -INFINITY;
+		for (size_t i = s * kSlab; i < std::min(nf, (s + 1) * kSlab); ++i) reach = std::max(reach, high[low[i].second]);
+		end[s] = (size_t) (std::upper_bound(low.begin(), low.end(), std::make_pair(reach, INT_MAX)) - low.begin());
+		searched += end[s] - s * kSlab;
+	}
+	const size_t tasks = searched > nf + nf / 2 ? 1 : slabs;
+	if (tasks == 1) end.assign(1, nf);
+	std::vector<std::vector<std::pair<std::size_t, std::size_t>>> found(tasks);
+	parallel_for(tasks, [&](size_t s) {
+		const size_t                            first = tasks == 1 ? 0 : s * kSlab, own = tasks == 1 ? nf : std::min(nf, first + kSlab);
+		std::vector<std::array<std::size_t, 3>> tris;
+		std::vector<int>                        face;
+		tris.reserve(end[s] - first);
+		for (size_t i = first; i < end[s]; ++i) {
+			const Tri& t = m.F[low[i].second];
+			tris.push_back({(std::size_t) t[0], (std::size_t) t[1], (std::size_t) t[2]});
+			face.push_back(low[i].second);
+		}
+		std::vector<std::pair<std::size_t, std::size_t>> pairs;
+		CGAL::Polygon_mesh_processing::triangle_soup_self_intersections(pts, tris, std::back_inserter(pairs));
+		for (const auto& [i, j] : pairs)
+			if (first + std::min(i, j) < own) found[s].push_back({(std::size_t) face[i], (std::size_t) face[j]});
+	});
 	// Faces that share a corner, or nearly do, may cross by a rounding error (tiny triangles of
 	// earlier cuts do): not a fold of the surface.
 	const double                     near2 = std::pow(1e-9 * diag, 2);
 	std::vector<std::pair<int, int>> crossing;
-	for (const auto& [f, g] : pairs) {
-		bool touch = false;
-		for (int a : m.F[f])
-			for (int b : m.F[g]) touch |= a == b || (m.V[a] - m.V[b]).squaredNorm() <= near2;
-		if (!touch) crossing.push_back({(int) f, (int) g});
-	}
+	for (const auto& pairs : found)
+		for (const auto& [f, g] : pairs) {
+			bool touch = false;
+			for (int a : m.F[f])
+				for (int b : m.F[g]) touch |= a == b || (m.V[a] - m.V[b]).squaredNorm() <= near2;
+			if (!touch) crossing.push_back({(int) std::min(f, g), (int) std::max(f, g)});
+		}
+	std::sort(crossing.begin(), crossing.end());
 	return crossing;
 }
 
@@ -281,8 +320,7 @@ Solid make_solid(const TriMesh& in)
 	const std::vector<int> remap = compact_vertices(in, s);
 	const double           diag  = checked_size(s);
 	checked_faces(in, remap, s);
-	check_edges(s.mesh);
-	split_vertex_fans(s);
+	split_vertex_fans(s, check_edges(s.mesh));
 	s.crossing_faces     = self_crossings(s.mesh, diag);
 	s.self_intersections = (long) s.crossing_faces.size();
 	orient(s, diag);
