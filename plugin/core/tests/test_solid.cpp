@@ -117,3 +117,19 @@ TEST_CASE("boxes meeting at a corner are one solid with that vertex split")
 	CHECK(s.volume == doctest::Approx(2.0));
 	CHECK(s.self_intersections == 0);
 }
+
+TEST_CASE("a solid of one shell made without the crossing search says so; several shells are searched anyway")
+{
+	const TriMesh one = shapes::sphere(3, 1.0);
+	const Solid   s   = make_solid(one, false);
+	CHECK(s.self_intersections == -1);
+	CHECK(s.crossing_faces.empty());
+	CHECK(s.shells == 1);
+	CHECK(s.volume == doctest::Approx(make_solid(one).volume));
+	// Two spheres crossing: their nesting needs the crossings, so they are found.
+	const TriMesh two = shapes::merge(shapes::sphere(3, 1.0), moved(shapes::sphere(3, 1.0), Vec3(1.1, 0, 0)));
+	const Solid   t   = make_solid(two, false);
+	CHECK(t.shells == 2);
+	CHECK(t.self_intersections == (long) all_crossings(two).size());
+	CHECK(t.self_intersections > 0);
+}

@@ -375,17 +375,13 @@ private:
 		if (hull_reach(both, h, std::vector<char>(h.facets(), 1), bar(), 0.1 * tau, 1e9, kPrefilterEvaluations).lower > bar())
 			return std::nullopt;
 		Solid s;
-		try {
-			s = make_solid(glue(PA.mesh, PB.mesh, planes, eps));
+		try {   // crossings searched last: most unions fail before, and the search costs as much as a measure
+			s = make_solid(glue(PA.mesh, PB.mesh, planes, eps), false);
 		}
 		catch (const std::exception&) {   // the glued surface is not a clean solid (a seam left open)
 			return std::nullopt;
 		}
-		// No fold of its own: the union crosses itself no more than its parts did (a part cut from a
-		// surface that nearly touches itself may carry such crossings from the cuts).
-		const long crossings = crossings_off_cuts(s, separating(leaves), eps);
-		if (s.shells != 1 || s.cavities > 0 || (crossings > 0 && crossings > own_crossings(A) + own_crossings(B)))
-			return std::nullopt;
+		if (s.shells != 1 || s.cavities > 0) return std::nullopt;
 		if (std::abs(s.volume - PA.volume - PB.volume) > 1e-6 * (PA.volume + PB.volume)) return std::nullopt;
 		const Topology        topo(s.mesh);
 		const ConvexHull      hull(s.mesh.V);
@@ -399,6 +395,12 @@ private:
 		n.notch_count         = rep.notches;
 		if (rep.max_vertex >= 0) n.notch = s.mesh.V[rep.max_vertex];
 		if (!certified(n, tau)) return std::nullopt;
+		// No fold of its own: the union crosses itself no more than its parts did (a part cut from a
+		// surface that nearly touches itself may carry such crossings from the cuts).
+		s.crossing_faces     = self_crossings(s.mesh, bbox_diagonal(s.mesh.V));
+		s.self_intersections = (long) s.crossing_faces.size();
+		const long crossings = crossings_off_cuts(s, separating(leaves), eps);
+		if (crossings > 0 && crossings > own_crossings(A) + own_crossings(B)) return std::nullopt;
 		g.notches   = notch_points(s.mesh, topo);
 		n.mesh      = std::move(s.mesh);
 		g.extreme   = extreme_points(corners);

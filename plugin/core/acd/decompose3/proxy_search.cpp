@@ -15,6 +15,7 @@
 #include <atomic>
 #include <chrono>
 #include <map>
+#include <memory>
 #include <optional>
 #include <set>
 #include <thread>
@@ -321,24 +322,26 @@ private:
 			u = glue(u, D.nodes[leaves[k]].mesh, planes, eps);
 			volume += D.nodes[leaves[k]].volume;
 		}
-		Node n;
-		try {
-			Solid s = make_solid(u);
+		Node  n;
+		Solid s;
+		try {   // crossings searched last, as in the merge
+			s = make_solid(u, false);
 			if (s.shells != 1 || s.cavities > 0 || std::abs(s.volume - volume) > 1e-6 * volume) return std::nullopt;
-			// No fold of its own, as in the merge: crossings where leaves touch across a cut are none,
-			// and the rest no more than the leaves carried from the cuts.
-			if (const long crossings = crossings_off_cuts(s, cuts, eps); crossings > 0) {
-				long own = 0;
-				for (int l : leaves) own += (long) self_crossings(D.nodes[l].mesh, bbox_diagonal(D.nodes[l].mesh.V)).size();
-				if (crossings > own) return std::nullopt;
-			}
-			n.mesh = std::move(s.mesh);
+			n.mesh = s.mesh;
 		}
 		catch (const Error&) {
 			return std::nullopt;
 		}
 		measure_node(n, keep, o.tau);
 		if (!certified(n, o.tau) || n.cavities > 0) return std::nullopt;
+		// No fold of its own, as in the merge: crossings where leaves touch across a cut are none,
+		// and the rest no more than the leaves carried from the cuts.
+		s.crossing_faces = self_crossings(s.mesh, bbox_diagonal(s.mesh.V));
+		if (const long crossings = crossings_off_cuts(s, cuts, eps); crossings > 0) {
+			long own = 0;
+			for (int l : leaves) own += (long) self_crossings(D.nodes[l].mesh, bbox_diagonal(D.nodes[l].mesh.V)).size();
+			if (crossings > own) return std::nullopt;
+		}
 		n.path   = D.nodes[leaves[0]].path + "+" + std::to_string(leaves.size() - 1);
 		n.merged = leaves;
 		return n;
@@ -386,16 +389,43 @@ private:
 		D.merge_time_limit_reached |= sub.merge_time_limit_reached;
 	}
 
+	// The proxy's cut tree made on a mesh: the proxy node it follows, and its two parts if the node's
+	// split splits the mesh as well.
+	struct Replayed
+	{
+		int                                      pid = 0;
+		TriMesh                                  mesh;
+		std::array<std::unique_ptr<Replayed>, 2> child;
+	};
+
+	// The splits below `r`, the two sides of each on two cores (each split depends on its parent's alone).
+	static void split_down(Replayed& r, const Decomposition& P)
+	{
+		const Node&            pn = P.nodes[r.pid];
+		std::array<TriMesh, 2> parts;
+		if (pn.child[0] < 0 || !split_like(r.mesh, P, pn, parts)) return;
+		for (int s = 0; s < 2; ++s) {
+			r.child[s]       = std::make_unique<Replayed>();
+			r.child[s]->pid  = pn.child[s];
+			r.child[s]->mesh = std::move(parts[s]);
+		}
+		parallel_for(2, [&](size_t s) { split_down(*r.child[s], P); });
+	}
+
 	// The proxy's cut tree on the solid from leaf `at` down: each of its cuts made by its plane on the
 	// solid's node, as far as the plane splits it in two; the solid's leaves into `leaves`. Inner nodes
 	// keep the proxy's measures widened by its distance; the leaves are measured on the solid later.
 	void replay(int at, const Decomposition& P, double e, std::vector<int>& leaves, std::map<int, int>& reached)
 	{
-		std::vector<std::pair<int, int>> todo{{at, 0}};
+		Replayed top;
+		top.mesh = std::move(D.nodes[at].mesh);   // lent to the splits, not copied
+		split_down(top, P);
+		D.nodes[at].mesh = std::move(top.mesh);
+		std::vector<std::pair<int, Replayed*>> todo{{at, &top}};
 		while (!todo.empty()) {
-			const auto [id, pid] = todo.back();
+			const auto [id, r] = todo.back();
 			todo.pop_back();
-			const Node& pn = P.nodes[pid];
+			const Node& pn = P.nodes[r->pid];
 			Node&       n  = D.nodes[id];
 			n.concavity           = pn.concavity + e;
 			n.hull_distance       = pn.hull_distance;
@@ -404,9 +434,8 @@ private:
 			n.notch_count         = pn.notch_count;
 			n.cavities            = pn.cavities;
 			n.volume              = signed_volume(n.mesh);
-			if (pn.child[0] < 0) reached[pid] = id;
-			std::array<TriMesh, 2> parts;
-			if (pn.child[0] < 0 || !split_like(n.mesh, P, pn, parts)) {
+			if (pn.child[0] < 0) reached[r->pid] = id;
+			if (!r->child[0]) {
 				leaves.push_back(id);
 				continue;
 			}
@@ -420,11 +449,11 @@ private:
 				Node c;
 				c.parent = id;
 				c.path   = path + char('0' + s);
-				c.mesh   = std::move(parts[s]);
+				c.mesh   = std::move(r->child[s]->mesh);
 				D.nodes.push_back(std::move(c));
 				D.nodes[id].child[s] = (int) D.nodes.size() - 1;
 			}
-			for (int s = 1; s >= 0; --s) todo.push_back({D.nodes[id].child[s], pn.child[s]});
+			for (int s = 1; s >= 0; --s) todo.push_back({D.nodes[id].child[s], r->child[s].get()});
 		}
 		std::sort(leaves.begin(), leaves.end(), [&](int a, int b) { return D.nodes[a].path < D.nodes[b].path; });
 	}

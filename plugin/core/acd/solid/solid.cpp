@@ -295,9 +295,9 @@ std::vector<std::pair<int, int>> self_crossings(const TriMesh& m, double diag)
 namespace {
 
 // Shells oriented by their nesting, the whole outward; refused if it holds no volume.
-void orient(Solid& s, double diag)
+// `comp`: each face's shell (face_components).
+void orient(Solid& s, double diag, const std::vector<int>& comp)
 {
-	const std::vector<int> comp = face_components(s.mesh, &s.shells);
 	// Nesting costs shells x faces ray tests; beyond a few hundred shells (debris, particle sets)
 	// the shells keep their given orientation. Shells that cross each other have no nesting to go by.
 	if (s.shells > 1 && s.shells <= 256 && s.self_intersections == 0) orient_by_nesting(s, comp, s.shells);
@@ -314,16 +314,20 @@ void orient(Solid& s, double diag)
 
 } // namespace
 
-Solid make_solid(const TriMesh& in)
+Solid make_solid(const TriMesh& in, bool crossings)
 {
 	Solid                  s;
 	const std::vector<int> remap = compact_vertices(in, s);
 	const double           diag  = checked_size(s);
 	checked_faces(in, remap, s);
 	split_vertex_fans(s, check_edges(s.mesh));
-	s.crossing_faces     = self_crossings(s.mesh, diag);
-	s.self_intersections = (long) s.crossing_faces.size();
-	orient(s, diag);
+	const std::vector<int> comp = face_components(s.mesh, &s.shells);
+	if (crossings || s.shells > 1) {
+		s.crossing_faces     = self_crossings(s.mesh, diag);
+		s.self_intersections = (long) s.crossing_faces.size();
+	}
+	else s.self_intersections = -1;
+	orient(s, diag, comp);
 	return s;
 }
 

@@ -26,8 +26,11 @@ struct Solid
 	double           volume = 0;
 };
 
-// Throws Error(InvalidInput) naming the first problem found (with its code and count).
-Solid make_solid(const TriMesh& input);
+// Throws Error(InvalidInput) naming the first problem found (with its code and count). Without
+// `crossings`, a solid of one shell is not searched for crossing faces (self_intersections -1): a
+// caller that may refuse it on other grounds first searches later (self_crossings). A solid of several
+// shells is always searched, as their nesting depends on it.
+Solid make_solid(const TriMesh& input, bool crossings = true);
 
 // The pairs of faces that cross away from shared corners (corners within 1e-9 `diag` count as shared).
 std::vector<std::pair<int, int>> self_crossings(const TriMesh& m, double diag);
