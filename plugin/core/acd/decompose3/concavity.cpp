@@ -13,23 +13,25 @@ namespace acd {
 namespace {
 
 // A* on the mesh's edge graph with the straight-line distance as the (admissible) heuristic.
-// Per-vertex state lives in arrays reused across searches; a stamp tells this search's entries.
+// Per-vertex state lives in one array reused across searches (a vertex's entries side by side: one
+// cache line read per neighbour looked at); a stamp tells this search's entries.
 struct PathSearch
 {
-	std::vector<double> g, h;   // h: the heuristic, computed once per vertex and search
-	std::vector<int>    from, stamp;
-	int                 round = 0;
+	struct State
+	{
+		double g = 0, h = 0;   // h: the heuristic, computed once per vertex and search
+		int    from = 0, stamp = 0;
+	};
+	std::vector<State> state;
+	int                round = 0;
 	using Item = std::pair<double, int>;
-	std::vector<Item>   heap;
+	std::vector<Item>  heap;
 
 	// Stamps only grow, so a search reused on another mesh never sees stale entries as current.
 	void resize(int nv)
 	{
-		if ((int) g.size() == nv) return;
-		g.assign(nv, 0);
-		h.assign(nv, 0);
-		from.assign(nv, 0);
-		stamp.assign(nv, 0);
+		if ((int) state.size() == nv) return;
+		state.assign(nv, State{});
 	}
 
 	// Stores the path's vertices, p first, in `out`; returns false if q is unreachable from p.
@@ -42,36 +44,37 @@ struct PathSearch
             heap.emplace_back(f, v);
             std::push_heap(heap.begin(), heap.end(), std::greater<Item>());
 		};
-		g[p]     = 0;
-		h[p]     = (m.V[p] - goal).norm();
-		stamp[p] = round;
-		push(h[p], p);
+		state[p].g     = 0;
+		state[p].h     = (m.V[p] - goal).norm();
+		state[p].stamp = round;
+		push(state[p].h, p);
 		bool found = false;
 		while (!heap.empty()) {
 			std::pop_heap(heap.begin(), heap.end(), std::greater<Item>());
 			auto [f, v] = heap.back();
 			heap.pop_back();
-			const double gv = g[v];
-			if (f > gv + h[v] + 1e-300) continue;   // stale entry
+			const double gv = state[v].g;
+			if (f > gv + state[v].h + 1e-300) continue;   // stale entry
 			if (v == q) {
 				found = true;
 				break;
 			}
 			const Vec3& x = m.V[v];
 			t.for_each_neighbour(v, [&](int w) {
+				State&       sw = state[w];
 				const double gw = gv + (m.V[w] - x).norm();
-				if (stamp[w] != round) {
-					stamp[w] = round;
-					h[w]     = (m.V[w] - goal).norm();
+				if (sw.stamp != round) {
+					sw.stamp = round;
+					sw.h     = (m.V[w] - goal).norm();
 				}
-				else if (!(gw < g[w])) return;
-				g[w]    = gw;
-				from[w] = v;
-				push(gw + h[w], w);
+				else if (!(gw < sw.g)) return;
+				sw.g    = gw;
+				sw.from = v;
+				push(gw + sw.h, w);
 			});
 		}
 		if (!found) return false;
-		for (int v = q; v != p; v = from[v]) out.push_back(v);
+		for (int v = q; v != p; v = state[v].from) out.push_back(v);
 		out.push_back(p);
 		std::reverse(out.begin(), out.end());   // p ... q
 		return true;
