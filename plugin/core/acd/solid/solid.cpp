@@ -220,21 +220,21 @@ void split_vertex_fans(Solid& s, const std::vector<int>& mate)
 
 } // namespace
 
-// Cuts assume the surface bounds one solid; overlapping or folded sheets can make parts that are not
-// closed. Counted, not refused: scanned meshes often cross themselves a little (the host decides;
-// the decomposition itself never returns an open part).
-//
-// A large mesh is searched in slabs on all cores: faces in order of their boxes' low end along the
-// longest axis, a run of kSlab of them with the faces after it that its boxes reach. A pair is kept by
-// the slab of its earlier face, so each is found once; the sorted pairs do not depend on the slabs.
-std::vector<std::pair<int, int>> self_crossings(const TriMesh& m, double diag)
+namespace {
+
+// The crossing search's slabs: the faces in order of their boxes' low end along the longest axis
+// (`order`), slab s owning order[s * size, (s + 1) * size) and searched with the faces up to end[s]
+// that its boxes reach. One slab of everything when long faces would make the slabs overlap much.
+struct Slabs
 {
-	using K = CGAL::Exact_predicates_inexact_constructions_kernel;
-	constexpr size_t kSlab = 40000;
-	std::vector<K::Point_3> pts;
-	pts.reserve(m.V.size());
-	for (const Vec3& p : m.V) pts.emplace_back(p.x(), p.y(), p.z());
-	const size_t nf = m.F.size();
+	std::vector<int>    order;
+	std::vector<size_t> end;
+	size_t              size = 0;
+};
+
+Slabs slabs_of(const TriMesh& m, size_t size)
+{
+	const size_t        nf = m.F.size();
 	Eigen::AlignedBox3d box;
 	for (const Vec3& p : m.V) box.extend(p);
 	int axis = 0;
@@ -242,40 +242,53 @@ std::vector<std::pair<int, int>> self_crossings(const TriMesh& m, double diag)
 	std::vector<std::pair<double, int>> low(nf);   // (box's low end, face)
 	std::vector<double>                 high(nf);  // by face
 	for (size_t f = 0; f < nf; ++f) {
-		const Tri& t = m.F[f];
+		const Tri&   t = m.F[f];
 		const double a = m.V[t[0]][axis], b = m.V[t[1]][axis], c = m.V[t[2]][axis];
-		low[f]  = {std::min({a, b, c}), (int) f};
-		high[f] = std::max({a, b, c});
+		low[f]         = {std::min({a, b, c}), (int) f};
+		high[f]        = std::max({a, b, c});
 	}
 	std::sort(low.begin(), low.end());
-	// Slab s: faces [s kSlab, end[s]) of `low`, its own the first kSlab. Boxes long enough to reach far
-	// past their slab make the slabs overlap; then one search of the whole costs less.
-	const size_t        slabs = std::max<size_t>(1, (nf + kSlab - 1) / kSlab);
-	std::vector<size_t> end(slabs, nf);
-	size_t              searched = 0;
-	for (size_t s = 0; s < slabs && slabs > 1; ++s) {
+	Slabs s;
+	s.size = size;
+	for (const auto& l : low) s.order.push_back(l.second);
+	size_t searched = 0;
+	for (size_t first = 0; first < nf; first += size) {
 		double reach = -INFINITY;
-		for (size_t i = s * kSlab; i < std::min(nf, (s + 1) * kSlab); ++i) reach = std::max(reach, high[low[i].second]);
-		end[s] = (size_t) (std::upper_bound(low.begin(), low.end(), std::make_pair(reach, INT_MAX)) - low.begin());
-		searched += end[s] - s * kSlab;
+		for (size_t i = first; i < std::min(nf, first + size); ++i) reach = std::max(reach, high[low[i].second]);
+		s.end.push_back((size_t) (std::upper_bound(low.begin(), low.end(), std::make_pair(reach, INT_MAX)) - low.begin()));
+		searched += s.end.back() - first;
 	}
-	const size_t tasks = searched > nf + nf / 2 ? 1 : slabs;
-	if (tasks == 1) end.assign(1, nf);
-	std::vector<std::vector<std::pair<std::size_t, std::size_t>>> found(tasks);
-	parallel_for(tasks, [&](size_t s) {
-		const size_t                            first = tasks == 1 ? 0 : s * kSlab, own = tasks == 1 ? nf : std::min(nf, first + kSlab);
+	if (s.end.size() < 2 || searched > nf + nf / 2) s.end.assign(1, nf), s.size = nf;
+	return s;
+}
+
+} // namespace
+
+// Cuts assume the surface bounds one solid; overlapping or folded sheets can make parts that are not
+// closed. Counted, not refused: scanned meshes often cross themselves a little (the host decides;
+// the decomposition itself never returns an open part).
+//
+// A large mesh is searched in slabs on all cores (slabs_of). A pair is kept by the slab of its earlier
+// face, so each is found once; the sorted pairs do not depend on the slabs.
+std::vector<std::pair<int, int>> self_crossings(const TriMesh& m, double diag)
+{
+	using K = CGAL::Exact_predicates_inexact_constructions_kernel;
+	std::vector<K::Point_3> pts;
+	pts.reserve(m.V.size());
+	for (const Vec3& p : m.V) pts.emplace_back(p.x(), p.y(), p.z());
+	const Slabs                                                   slabs = slabs_of(m, 40000);
+	std::vector<std::vector<std::pair<std::size_t, std::size_t>>> found(slabs.end.size());
+	parallel_for(slabs.end.size(), [&](size_t s) {
+		const size_t                            first = s * slabs.size, own = first + slabs.size;
 		std::vector<std::array<std::size_t, 3>> tris;
-		std::vector<int>                        face;
-		tris.reserve(end[s] - first);
-		for (size_t i = first; i < end[s]; ++i) {
-			const Tri& t = m.F[low[i].second];
+		for (size_t i = first; i < slabs.end[s]; ++i) {
+			const Tri& t = m.F[slabs.order[i]];
 			tris.push_back({(std::size_t) t[0], (std::size_t) t[1], (std::size_t) t[2]});
-			face.push_back(low[i].second);
 		}
 		std::vector<std::pair<std::size_t, std::size_t>> pairs;
 		CGAL::Polygon_mesh_processing::triangle_soup_self_intersections(pts, tris, std::back_inserter(pairs));
 		for (const auto& [i, j] : pairs)
-			if (first + std::min(i, j) < own) found[s].push_back({(std::size_t) face[i], (std::size_t) face[j]});
+			if (first + std::min(i, j) < own) found[s].push_back({(std::size_t) slabs.order[first + i], (std::size_t) slabs.order[first + j]});
 	});
 	// Faces that share a corner, or nearly do, may cross by a rounding error (tiny triangles of
 	// earlier cuts do): not a fold of the surface.
