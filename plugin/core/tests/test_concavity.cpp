@@ -41,64 +41,6 @@ TEST_CASE("u shape concavity is its depth")
 	CHECK(r.notches == 2);
 }
 
-TEST_CASE("bad input is refused with a reason")
-{
-	TriMesh open = shapes::box({0, 0, 0}, {1, 1, 1});
-	open.F.pop_back();
-	auto refused = [](const TriMesh& m, const std::string& word) {
-		try {
-			make_solid(m);
-		}
-		catch (const Error& e) {
-			return e.kind == Error::InvalidInput && std::string(e.what()).find(word) != std::string::npos;
-		}
-		return false;
-	};
-	CHECK(refused(open, "boundary edges"));
-	CHECK(refused(TriMesh{}, "empty"));
-	CHECK(refused(TriMesh{{Vec3(0, 0, 0), Vec3(1, 0, 0)}, {}}, "point cloud"));
-	CHECK(make_solid(shapes::inverted(shapes::box({0, 0, 0}, {1, 1, 1}))).flipped);
-	CHECK_NEAR(make_solid(shapes::inverted(shapes::box({0, 0, 0}, {1, 1, 1}))).volume, 1.0, 1e-12);
-	TriMesh nan = shapes::box({0, 0, 0}, {1, 1, 1});
-	nan.V[0].x() = std::nan("");
-	CHECK(refused(nan, "NaN"));
-}
-
-TEST_CASE("input errors carry their code and count for the host's repair")
-{
-	auto error_of = [](const TriMesh& m) {
-		try {
-			make_solid(m);
-		}
-		catch (const Error& e) {
-			return std::make_pair(e.code, e.count);
-		}
-		return std::make_pair(Error::Unspecified, -1L);
-	};
-	TriMesh open = shapes::box({0, 0, 0}, {1, 1, 1});
-	open.F.pop_back();
-	CHECK(error_of(open) == std::make_pair(Error::OpenMesh, 3L));
-	TriMesh dup = shapes::box({0, 0, 0}, {1, 1, 1});
-	dup.F.push_back(dup.F[0]);
-	dup.F.push_back(dup.F[1]);
-	CHECK(error_of(dup) == std::make_pair(Error::DuplicateFaces, 2L));
-	TriMesh flipped = shapes::box({0, 0, 0}, {1, 1, 1});
-	std::swap(flipped.F[0][1], flipped.F[0][2]);
-	CHECK(error_of(flipped).first == Error::Misoriented);
-	CHECK(error_of(TriMesh{{Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0)}, {}}) == std::make_pair(Error::PointCloud, 3L));
-	TriMesh repeated = shapes::box({0, 0, 0}, {1, 1, 1});
-	repeated.F[0][1] = repeated.F[0][0];
-	CHECK(error_of(repeated).first == Error::RepeatedVertex);
-	for (const TriMesh& m : {open, dup, flipped}) {   // the core's words name no host's repair
-		try {
-			make_solid(m);
-		}
-		catch (const Error& e) {
-			CHECK(std::string(e.what()).find("meshing_") == std::string::npos);
-		}
-	}
-}
-
 // Cut outlines put nearly collinear points on hulls; the sliver triangles between them have
 // rounding-noise normals. Every facet plane must still bound the hull (a bogus plane made
 // points deep inside look outside, and bridges far away look near).

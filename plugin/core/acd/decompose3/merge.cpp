@@ -397,8 +397,7 @@ private:
 		if (!certified(n, tau)) return std::nullopt;
 		// No fold of its own: the union crosses itself no more than its parts did (a part cut from a
 		// surface that nearly touches itself may carry such crossings from the cuts).
-		s.crossing_faces     = self_crossings(s.mesh, bbox_diagonal(s.mesh.V));
-		s.self_intersections = (long) s.crossing_faces.size();
+		find_crossings(s);
 		const long crossings = crossings_off_cuts(s, separating(leaves), eps);
 		if (crossings > 0 && crossings > own_crossings(A) + own_crossings(B)) return std::nullopt;
 		g.notches   = notch_points(s.mesh, topo);

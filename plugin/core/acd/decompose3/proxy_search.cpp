@@ -336,7 +336,7 @@ private:
 		if (!certified(n, o.tau) || n.cavities > 0) return std::nullopt;
 		// No fold of its own, as in the merge: crossings where leaves touch across a cut are none,
 		// and the rest no more than the leaves carried from the cuts.
-		s.crossing_faces = self_crossings(s.mesh, bbox_diagonal(s.mesh.V));
+		find_crossings(s);
 		if (const long crossings = crossings_off_cuts(s, cuts, eps); crossings > 0) {
 			long own = 0;
 			for (int l : leaves) own += (long) self_crossings(D.nodes[l].mesh, bbox_diagonal(D.nodes[l].mesh.V)).size();

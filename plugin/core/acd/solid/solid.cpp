@@ -335,13 +335,16 @@ Solid make_solid(const TriMesh& in, bool crossings)
 	checked_faces(in, remap, s);
 	split_vertex_fans(s, check_edges(s.mesh));
 	const std::vector<int> comp = face_components(s.mesh, &s.shells);
-	if (crossings || s.shells > 1) {
-		s.crossing_faces     = self_crossings(s.mesh, diag);
-		s.self_intersections = (long) s.crossing_faces.size();
-	}
-	else s.self_intersections = -1;
+	s.self_intersections = -1;
+	if (crossings || s.shells > 1) find_crossings(s);
 	orient(s, diag, comp);
 	return s;
+}
+
+void find_crossings(Solid& s)
+{
+	s.crossing_faces     = self_crossings(s.mesh, bbox_diagonal(s.mesh.V));
+	s.self_intersections = (long) s.crossing_faces.size();
 }
 
 long crossings_off_cuts(const Solid& s, const std::vector<Plane>& cuts, double eps)

@@ -35,6 +35,9 @@ Solid make_solid(const TriMesh& input, bool crossings = true);
 // The pairs of faces that cross away from shared corners (corners within 1e-9 `diag` count as shared).
 std::vector<std::pair<int, int>> self_crossings(const TriMesh& m, double diag);
 
+// The solid's crossing pairs and their count found (after make_solid without them).
+void find_crossings(Solid& s);
+
 // The solid's crossing face pairs but for those that one of `cuts` separates (each face on its own side,
 // a face lying in the plane on its solid's side): parts glued along a cut only touch there (their rims
 // met a rounding error apart, or they meet along an edge), which is no fold. `eps`: the planes' width.
