@@ -59,19 +59,41 @@ public:
 		}
 	}
 
-	// One round: false when nothing could be collapsed.
+	// One round: false when nothing could be collapsed. The collapses are taken in order; each block of
+	// them is first judged on two cores against the mesh as the block starts, and a judgement is kept
+	// where no collapse in the block has touched the faces it read (else judged again in turn), so the
+	// round takes exactly the collapses a plain sweep would.
 	bool round(size_t target)
 	{
 		index_faces();
 		cheapest();
 		locked.assign(V.size(), 0);
+		touched.assign(V.size(), -1);
 		size_t faces = F.size(), done = 0;
-		for (const Collapse& c : order) {
-			if (faces <= target) break;
-			if (locked[c.u] || locked[c.v] || !allowed(c)) continue;
-			collapse(c);
-			faces -= 2;
-			++done;
+		Scratch mine;
+		for (size_t b = 0; b < order.size() && faces > target; b += kBlock) {
+			const size_t e     = std::min(order.size(), b + kBlock);
+			const int    block = (int) (b / kBlock);
+			guess.resize(e - b);
+			parallel_for((e - b + 1023) / 1024, [&](size_t k) {
+				Scratch s;
+				for (size_t i = b + k * 1024; i < std::min(e, b + (k + 1) * 1024); ++i) {
+					const Collapse& c = order[i];
+					guess[i - b]      = locked[c.u] || locked[c.v] ? Guess{} : judge(c, s);
+				}
+			});
+			for (size_t i = b; i < e && faces > target; ++i) {
+				const Collapse& c = order[i];
+				if (locked[c.u] || locked[c.v]) continue;
+				const Guess& g     = guess[i - b];
+				const bool   fresh = touched[c.u] != block && touched[c.v] != block &&
+				                   (g.opposite[0] < 0 || (touched[g.opposite[0]] != block && touched[g.opposite[1]] != block));
+				if (!(fresh ? g.ok : judge(c, mine).ok)) continue;
+				touch(c, block);
+				collapse(c);
+				faces -= 2;
+				++done;
+			}
 		}
 		compact_faces();
 		return done > 0;
@@ -97,7 +119,18 @@ private:
 	const double         bar, floor;
 	std::vector<int>     start, incident;   // faces around each vertex (at the round's start)
 	std::vector<char>    dead, locked;
-	mutable std::vector<int> ring[2], opposite, common;   // allowed()'s scratch
+	std::vector<int>     touched;   // the last block of the round whose collapses changed a vertex's faces
+	struct Scratch
+	{
+		std::vector<int> ring[2], opposite, common;
+	};
+	struct Guess
+	{
+		bool ok = false;
+		int  opposite[2] = {-1, -1};   // the link's two opposite vertices, when their degrees were read
+	};
+	std::vector<Guess> guess;
+	static constexpr size_t kBlock = 16384;   // collapses judged together
 	std::vector<std::pair<int, int>> edges;              // cheapest()'s
 	std::vector<Collapse>            all, order;
 
@@ -175,41 +208,56 @@ private:
 	}
 
 	// The link condition (the two ends share exactly the edge's two opposite vertices, each left with
-	// three neighbours at least) and no face turned or flattened.
-	bool allowed(const Collapse& c) const
+	// three neighbours at least) and no face turned or flattened. Reads the faces about c.u and c.v,
+	// their vertices, and the faces about the two opposite vertices.
+	Guess judge(const Collapse& c, Scratch& s) const
 	{
+		auto& ring = s.ring;
+		auto& opposite = s.opposite;
 		for (auto& r : ring) r.clear();
-		opposite.clear(), common.clear();
-		for (int s = 0; s < 2; ++s)
-			each_face(s ? c.v : c.u, [&](int f) {
+		opposite.clear(), s.common.clear();
+		for (int k = 0; k < 2; ++k)
+			each_face(k ? c.v : c.u, [&](int f) {
 				const Tri& t = F[f];
 				const bool both = std::count(t.begin(), t.end(), c.u) && std::count(t.begin(), t.end(), c.v);
 				for (int w : t) {
-					if (w != c.u && w != c.v) ring[s].push_back(w);
-					if (both && s == 0 && w != c.u && w != c.v) opposite.push_back(w);
+					if (w != c.u && w != c.v) ring[k].push_back(w);
+					if (both && k == 0 && w != c.u && w != c.v) opposite.push_back(w);
 				}
 			});
-		if (opposite.size() != 2) return false;
+		Guess g;
+		if (opposite.size() != 2) return g;
 		for (auto& r : ring) {
 			std::sort(r.begin(), r.end());
 			r.erase(std::unique(r.begin(), r.end()), r.end());
 		}
-		std::set_intersection(ring[0].begin(), ring[0].end(), ring[1].begin(), ring[1].end(), std::back_inserter(common));
-		if (common.size() != 2 || ring[0].size() + ring[1].size() - 2 < 3) return false;
+		std::set_intersection(ring[0].begin(), ring[0].end(), ring[1].begin(), ring[1].end(), std::back_inserter(s.common));
+		if (s.common.size() != 2 || ring[0].size() + ring[1].size() - 2 < 3) return g;
+		g.opposite[0] = opposite[0], g.opposite[1] = opposite[1];
 		for (int o : opposite)
-			if (degree(o) < 4) return false;
+			if (degree(o) < 4) return g;
 		bool ok = true;
-		for (int s = 0; s < 2 && ok; ++s)
-			each_face(s ? c.v : c.u, [&](int f) {
+		for (int k = 0; k < 2 && ok; ++k)
+			each_face(k ? c.v : c.u, [&](int f) {
 				const Tri& t = F[f];
 				if (std::count(t.begin(), t.end(), c.u) && std::count(t.begin(), t.end(), c.v)) return;
 				std::array<Vec3, 3> p;
-				for (int k = 0; k < 3; ++k) p[k] = t[k] == c.u || t[k] == c.v ? c.p : V[t[k]];
+				for (int j = 0; j < 3; ++j) p[j] = t[j] == c.u || t[j] == c.v ? c.p : V[t[j]];
 				const Vec3 before = (V[t[1]] - V[t[0]]).cross(V[t[2]] - V[t[0]]);
 				const Vec3 after  = (p[1] - p[0]).cross(p[2] - p[0]);
 				ok = ok && after.norm() > floor && after.dot(before) >= 0.5 * after.norm() * before.norm();
 			});
-		return ok;
+		g.ok = ok;
+		return g;
+	}
+
+	// Marks every vertex whose faces collapse(c) changes: those of the faces about c.u and c.v.
+	void touch(const Collapse& c, int block)
+	{
+		for (int s = 0; s < 2; ++s)
+			each_face(s ? c.v : c.u, [&](int f) {
+				for (int w : F[f]) touched[w] = block;
+			});
 	}
 
 	void collapse(const Collapse& c)
