@@ -96,3 +96,29 @@ TEST_CASE("proxy search: a proxy too coarse for tau has its failing parts search
 		else CHECK(parts == first);
 	}
 }
+
+TEST_CASE("proxy search: a part's search that starts from its certificate's measure makes the same tree")
+{
+	// The measure handed over is the one the search would take of its root: the same cuts and parts.
+	// A solid of two shells is cut between them first, so a measure of the whole is not the root's.
+	TriMesh two = fine_u();
+	const int nv = (int) two.V.size(), nf = (int) two.F.size();
+	for (int v = 0; v < nv; ++v) two.V.push_back(two.V[v] + Vec3(0, 0, 3));
+	for (int f = 0; f < nf; ++f) two.F.push_back({two.F[f][0] + nv, two.F[f][1] + nv, two.F[f][2] + nv});
+	for (const TriMesh& m : {fine_u(), two}) {
+		const Solid  s   = make_solid(m);
+		const double tau = 0.02 * extent(s.mesh.V);
+		Node         root;
+		root.mesh               = s.mesh;
+		const MeasuredPtr   ms  = measure_node(root, false, tau);
+		const Decomposition own = cut_tree(s, options(tau));
+		const Decomposition fed = cut_tree(s, options(tau), ms);
+		REQUIRE(own.parts().size() > 1);
+		REQUIRE(fed.nodes.size() == own.nodes.size());
+		for (size_t i = 0; i < own.nodes.size(); ++i) {
+			CHECK(fed.nodes[i].mesh.V == own.nodes[i].mesh.V);
+			CHECK(fed.nodes[i].concavity == own.nodes[i].concavity);
+			CHECK(fed.nodes[i].notch == own.nodes[i].notch);
+		}
+	}
+}

@@ -39,7 +39,6 @@ int holes_in(const Node& n)
 	return n.cavities;
 }
 
-
 namespace {
 
 // The faces of each cavity (a shell of negative volume) of a solid.
@@ -85,7 +84,9 @@ TriMesh outer_surface(const TriMesh& m, const std::vector<std::vector<int>>& cav
 	return out;
 }
 
-// What cutting a node needs from its measure; kept while the node waits to be cut. With
+} // namespace
+
+// What cutting a node needs from its measure (decompose.h); kept while the node waits to be cut. With
 // keep_cavities only the outer surface is measured (a cavity never retracts to the hull).
 struct Measured
 {
@@ -104,6 +105,8 @@ struct Measured
 	// mesh is passed in, not kept: nodes move when the tree grows.)
 	const TriMesh& surface(const TriMesh& m) const { return outer.F.empty() ? m : outer; }
 };
+
+namespace {
 
 // A node's measures from its mesh's; its notch is kept when the mesh has none.
 void take_measures(Node& n, const Measured& ms)
@@ -211,10 +214,10 @@ class Driver : public Driving<Driver, Decomposition, DecomposeOptions>
 public:
 	explicit Driver(const DecomposeOptions& opt) : Driving(opt, opt.hole_handling == HoleHandling::KeepCavities, kMaxDepth) {}
 
-	Decomposition run(const Solid& solid)
+	Decomposition run(const Solid& solid, MeasuredPtr root)
 	{
 		const std::vector<int> roots = root_nodes(solid);
-		for (int id : roots) measure_node(id);
+		for (int id : roots) measure_node(id, roots.size() == 1 ? root : nullptr);
 		return finish(roots, &Decomposition::kept_cavities);
 	}
 
@@ -651,15 +654,17 @@ private:
 
 } // namespace
 
-Decomposition cut_tree(const Solid& solid, const DecomposeOptions& opt)
+Decomposition cut_tree(const Solid& solid, const DecomposeOptions& opt, MeasuredPtr root)
 {
-	return Driver(opt).run(solid);
+	return Driver(opt).run(solid, std::move(root));
 }
 
-void measure_node(Node& n, bool keep_cavities, double tau)
+MeasuredPtr measure_node(Node& n, bool keep_cavities, double tau)
 {
 	n.notch = Vec3::Zero();
-	take_measures(n, Measured(n.mesh, keep_cavities, tau));
+	auto ms = std::make_shared<const Measured>(n.mesh, keep_cavities, tau);
+	take_measures(n, *ms);
+	return ms;
 }
 
 namespace {

@@ -8,6 +8,7 @@
 #include "acd/solid/solid.h"
 #include "acd/recursion/hole_order.h"
 
+#include <memory>
 #include <functional>
 #include <string>
 
@@ -112,9 +113,13 @@ Decomposition decompose(const Solid& solid, const DecomposeOptions& options);
 // becomes id[k] (-1 stays -1).
 void renumber(Node& n, const std::vector<int>& id);
 
-// decompose()'s stages, for the proxy search (proxy_search.h). The cut tree of a solid centred and at
-// unit size (no merge); and a node's measures from its mesh, as the cuts take them.
-Decomposition cut_tree(const Solid& solid, const DecomposeOptions& options);
-void          measure_node(Node& n, bool keep_cavities, double tau);
+// decompose()'s stages, for the proxy search (proxy_search.h). A node's measures from its mesh, as the
+// cuts take them; the measure itself is returned, so that a part that fails the certificate is not
+// measured again as the root of its own search. The cut tree of a solid centred and at unit size (no
+// merge); `root`: the solid's mesh measured so already (with the same options), or none.
+struct Measured;
+using MeasuredPtr = std::shared_ptr<const Measured>;
+MeasuredPtr   measure_node(Node& n, bool keep_cavities, double tau);
+Decomposition cut_tree(const Solid& solid, const DecomposeOptions& options, MeasuredPtr root = nullptr);
 
 } // namespace acd

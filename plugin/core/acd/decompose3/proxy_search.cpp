@@ -169,11 +169,19 @@ private:
 		// The largest first, so that no core is left measuring one alone at the end.
 		std::vector<int> by_size = rest;
 		std::stable_sort(by_size.begin(), by_size.end(), [&](int a, int b) { return D.nodes[a].mesh.F.size() > D.nodes[b].mesh.F.size(); });
-		parallel_for(by_size.size(), [&](size_t i) { measure_node(D.nodes[by_size[i]], keep, o.tau); });
+		// A part that fails keeps its measure: its search starts from it.
+		std::vector<MeasuredPtr> measures(by_size.size());
+		parallel_for(by_size.size(), [&](size_t i) {
+			MeasuredPtr ms = measure_node(D.nodes[by_size[i]], keep, o.tau);
+			if (needs_search(D.nodes[by_size[i]])) measures[i] = std::move(ms);
+		});
+		std::map<int, MeasuredPtr> failed;
+		for (size_t i = 0; i < by_size.size(); ++i)
+			if (measures[i]) failed[by_size[i]] = std::move(measures[i]);
 		std::vector<int> again;
 		for (int l : rest)
-			if (needs_search(D.nodes[l])) again.push_back(l);
-		if (!D.time_limit_reached) search_again(again, level, merge);
+			if (failed.count(l)) again.push_back(l);
+		if (!D.time_limit_reached) search_again(again, failed, level, merge);
 	}
 
 	// True if leaf `at` is searched as it is from proxy level `level` on (search_node's first test).
@@ -185,7 +193,7 @@ private:
 	// The leaves that failed, searched again in leaf order. Those searched as they are go all at once
 	// (largest first), their trees grafted in leaf order after; the rest in turn. The reports go
 	// through the calling thread, and a cancel there reaches the other searches at their next report.
-	void search_again(const std::vector<int>& again, int level, bool merge)
+	void search_again(const std::vector<int>& again, const std::map<int, MeasuredPtr>& measured, int level, bool merge)
 	{
 		std::vector<int> now;
 		for (int l : again)
@@ -201,7 +209,7 @@ private:
             if (std::this_thread::get_id() == caller && o.progress && !o.progress(pct, msg)) cancelled = true;
             return !cancelled.load();
 		};
-		parallel_for(now.size(), [&](size_t i) { found[i] = cut_and_merge(solid_of(now[i]), merge, eo); });
+		parallel_for(now.size(), [&](size_t i) { found[i] = cut_and_merge(solid_of(now[i]), merge, eo, measured.at(now[i])); });
 		for (int l : again) {
 			if (!at.count(l) && D.time_limit_reached) continue;
 			++D.proxy_retries;
@@ -366,12 +374,12 @@ private:
 	}
 
 	// The search on `s` itself (and its merge), within the time left: the merge gets what the cuts left.
-	// `with`: the options, but for their time limit.
-	Decomposition cut_and_merge(const Solid& s, bool merge, const DecomposeOptions& with) const
+	// `with`: the options, but for their time limit; `root`: s measured already, or none.
+	Decomposition cut_and_merge(const Solid& s, bool merge, const DecomposeOptions& with, MeasuredPtr root = nullptr) const
 	{
 		DecomposeOptions eo   = with;
 		eo.time_limit_seconds = left();
-		Decomposition sub     = cut_tree(s, eo);
+		Decomposition sub     = cut_tree(s, eo, std::move(root));
 		if (merge) merge_parts(sub, o.tau, with.progress, left(), memo);
 		return sub;
 	}
