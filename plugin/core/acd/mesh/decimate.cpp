@@ -188,11 +188,7 @@ private:
 		order.clear();
 		for (const Collapse& c : all)
 			if (c.cost <= bar) order.push_back(c);
-		// Two halves sorted on two cores, then merged: the order is total (cost, then the edge's ends),
-		// so this is the one sorted order, on any number of threads.
-		const auto half = order.begin() + (std::ptrdiff_t) (order.size() / 2);
-		parallel_for(2, [&](size_t k) { std::sort(k ? half : order.begin(), k ? order.end() : half); });
-		std::inplace_merge(order.begin(), half, order.end());
+		sort_halves(order.begin(), order.end());   // a total order: cost, then the edge's ends
 	}
 
 	template <class Fn> void each_face(int v, Fn fn) const

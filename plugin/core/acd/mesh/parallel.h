@@ -156,4 +156,14 @@ void parallel_for_chunked(size_t n, size_t chunk, Fn fn)
 	});
 }
 
+// std::sort of [first, last) in two halves on two cores, then merged: the same order as one sort when
+// `less` is a total order (no two elements equivalent), on any number of threads.
+template <class It, class Less = std::less<>>
+void sort_halves(It first, It last, Less less = Less())
+{
+	const It half = first + (last - first) / 2;
+	parallel_for(2, [&](size_t k) { std::sort(k ? half : first, k ? last : half, less); });
+	std::inplace_merge(first, half, last, less);
+}
+
 } // namespace acd

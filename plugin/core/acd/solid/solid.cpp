@@ -35,7 +35,7 @@ EdgeUses edge_uses(const std::vector<Tri>& F)
 			const unsigned a = (unsigned) F[f][k], b = (unsigned) F[f][(k + 1) % 3];
 			e.push_back({(Key) std::min(a, b) << 32 | std::max(a, b), 3 * f + k});
 		}
-	std::sort(e.begin(), e.end());
+	sort_halves(e.begin(), e.end());   // keys with their corner: no two equal
 	EdgeUses u;
 	u.mate.assign(e.size(), -1);
 	const auto from = [&](int c) { return F[c / 3][c % 3]; };
