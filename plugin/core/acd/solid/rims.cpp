@@ -1,19 +1,79 @@
 // Closing a surface welded from parts cut apart: rim edges split on one side only, and compaction.
 #include "acd/solid/rims.h"
 
-#include <set>
+#include <Eigen/Geometry>
+
+#include <algorithm>
+#include <cstdint>
+#include <utility>
+#include <vector>
 
 namespace acd {
 
 namespace {
 
-std::set<std::pair<int, int>> directed_edges(const TriMesh& m)
+// The faces' directed edges as sorted keys: whether b -> a is used is one binary search.
+class DirectedEdges
 {
-	std::set<std::pair<int, int>> directed;
-	for (const Tri& t : m.F)
-		for (int k = 0; k < 3; ++k) directed.insert({t[k], t[(k + 1) % 3]});
-	return directed;
-}
+public:
+	explicit DirectedEdges(const TriMesh& m)
+	{
+		keys.reserve(3 * m.F.size());
+		for (const Tri& t : m.F)
+			for (int k = 0; k < 3; ++k) keys.push_back(key(t[k], t[(k + 1) % 3]));
+		std::sort(keys.begin(), keys.end());
+	}
+	bool has(int a, int b) const { return std::binary_search(keys.begin(), keys.end(), key(a, b)); }
+	// The vertices of the edges used one way only, sorted.
+	std::vector<int> unmatched_ends() const
+	{
+		std::vector<int> ends;
+		for (std::uint64_t k : keys) {
+			const int a = (int) (k >> 32), b = (int) (k & 0xffffffffu);
+			if (!has(b, a)) ends.push_back(a), ends.push_back(b);
+		}
+		std::sort(ends.begin(), ends.end());
+		ends.erase(std::unique(ends.begin(), ends.end()), ends.end());
+		return ends;
+	}
+
+private:
+	static std::uint64_t key(int a, int b) { return (std::uint64_t) (std::uint32_t) a << 32 | (std::uint32_t) b; }
+	std::vector<std::uint64_t> keys;
+};
+
+// The rim vertices sorted along the axis they spread most on: those that can lie within eps of a
+// segment are one range of them, handed out by id (the order a scan of all of them would meet them).
+class RimIndex
+{
+public:
+	RimIndex(const std::vector<Vec3>& V, const std::vector<int>& rim)
+	{
+		Eigen::AlignedBox3d box;
+		for (int v : rim) box.extend(V[v]);
+		if (!rim.empty()) (box.max() - box.min()).maxCoeff(&axis);
+		for (int v : rim) along.push_back({V[v][axis], v});
+		std::sort(along.begin(), along.end());
+	}
+	bool empty() const { return along.empty(); }
+	// Every rim vertex within eps of segment ab (and others near it), by id.
+	const std::vector<int>& near(const Vec3& a, const Vec3& b, double eps)
+	{
+		const double lo = std::min(a[axis], b[axis]), hi = std::max(a[axis], b[axis]);
+		const double pad = eps + 1e-9 * (std::abs(lo) + std::abs(hi) + eps);   // and the test's rounding
+		found.clear();
+		for (auto it = std::lower_bound(along.begin(), along.end(), std::make_pair(lo - pad, -1));
+		     it != along.end() && it->first <= hi + pad; ++it)
+			found.push_back(it->second);
+		std::sort(found.begin(), found.end());
+		return found;
+	}
+
+private:
+	int                                 axis = 0;
+	std::vector<std::pair<double, int>> along;
+	std::vector<int>                    found;
+};
 
 } // namespace
 
@@ -21,22 +81,19 @@ std::set<std::pair<int, int>> directed_edges(const TriMesh& m)
 // gets the rim vertices lying on it, and its face is fanned out.
 void close_rims(TriMesh& all, double eps)
 {
-	std::set<std::pair<int, int>> directed = directed_edges(all);
-	std::set<int>                 rim;
-	for (const auto& [a, b] : directed)
-		if (!directed.count({b, a})) rim.insert(a), rim.insert(b);
-	std::vector<int> rim_v(rim.begin(), rim.end());
-	for (int pass = 0; pass < 8 && !rim_v.empty(); ++pass) {
+	DirectedEdges directed(all);
+	RimIndex      rims(all.V, directed.unmatched_ends());
+	for (int pass = 0; pass < 8 && !rims.empty(); ++pass) {
 		bool             changed = false;
 		std::vector<Tri> faces;
 		for (const Tri& t : all.F) {
 			int k = 0, w = -1;
 			for (; k < 3 && w < 0; ++k) {
 				const int a = t[k], b = t[(k + 1) % 3];
-				if (directed.count({b, a})) continue;
+				if (directed.has(b, a)) continue;
 				const Vec3 ab   = all.V[b] - all.V[a];
 				double     best = 2;
-				for (int v : rim_v) {
+				for (int v : rims.near(all.V[a], all.V[b], eps)) {
 					if (v == a || v == b || v == t[(k + 2) % 3]) continue;
 					const double s = (all.V[v] - all.V[a]).dot(ab) / ab.squaredNorm();
 					if (s <= 0 || s >= 1 || (all.V[a] + s * ab - all.V[v]).norm() > eps) continue;
@@ -55,7 +112,7 @@ void close_rims(TriMesh& all, double eps)
 		}
 		all.F.swap(faces);
 		if (!changed) break;
-		directed = directed_edges(all);
+		directed = DirectedEdges(all);
 	}
 }
 
