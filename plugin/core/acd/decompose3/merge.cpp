@@ -548,27 +548,44 @@ size_t MergeMemo::size() const
 	return unions->by_key.size();
 }
 
+namespace {
+
+// The leaves on either side of cut node `c` whose caps on its plane overlap.
+std::vector<LeafContact> contacts_across(const Decomposition& D, int c, double eps)
+{
+	const Node&                    n = D.nodes[c];
+	const Vec3                     u = n.plane.n.unitOrthogonal(), w = n.plane.n.cross(u);
+	std::vector<int>               side[2];
+	std::vector<std::vector<Tri2>> caps[2];
+	for (int s = 0; s < 2; ++s)
+		for (int l : leaves_below(D, n.child[s])) {
+			std::vector<Tri2> cap = cap_on(D.nodes[l].mesh, n.plane, u, w, eps);
+			if (cap.empty()) continue;
+			side[s].push_back(l);
+			caps[s].push_back(std::move(cap));
+		}
+	std::vector<LeafContact> out;
+	for (size_t i = 0; i < side[0].size(); ++i)
+		for (size_t j = 0; j < side[1].size(); ++j)
+			if (caps_overlap(caps[0][i], caps[1][j], eps))
+				out.push_back({std::min(side[0][i], side[1][j]), std::max(side[0][i], side[1][j]), c});
+	return out;
+}
+
+} // namespace
+
+// Each cut's contacts on its own core (the cuts near the root, with the most leaves below, first),
+// gathered in node order.
 std::vector<LeafContact> neighbouring_leaves(const Decomposition& D)
 {
+	const double     eps = 1e-9 * extent(D.nodes[0].mesh.V);
+	std::vector<int> cuts;
+	for (int k = 0; k < (int) D.nodes.size(); ++k)
+		if (D.nodes[k].has_plane && !D.nodes[k].solids) cuts.push_back(k);
+	std::vector<std::vector<LeafContact>> found(cuts.size());
+	parallel_for(cuts.size(), [&](size_t i) { found[i] = contacts_across(D, cuts[i], eps); });
 	std::vector<LeafContact> out;
-	const double eps = 1e-9 * extent(D.nodes[0].mesh.V);
-	for (const Node& n : D.nodes) {
-		if (!n.has_plane || n.solids) continue;
-		const Vec3                     u = n.plane.n.unitOrthogonal(), w = n.plane.n.cross(u);
-		std::vector<int>               side[2];
-		std::vector<std::vector<Tri2>> caps[2];
-		for (int s = 0; s < 2; ++s)
-			for (int l : leaves_below(D, n.child[s])) {
-				std::vector<Tri2> c = cap_on(D.nodes[l].mesh, n.plane, u, w, eps);
-				if (c.empty()) continue;
-				side[s].push_back(l);
-				caps[s].push_back(std::move(c));
-			}
-		for (size_t i = 0; i < side[0].size(); ++i)
-			for (size_t j = 0; j < side[1].size(); ++j)
-				if (caps_overlap(caps[0][i], caps[1][j], eps))
-					out.push_back({std::min(side[0][i], side[1][j]), std::max(side[0][i], side[1][j]), int(&n - D.nodes.data())});
-	}
+	for (const auto& f : found) out.insert(out.end(), f.begin(), f.end());
 	return out;
 }
 
