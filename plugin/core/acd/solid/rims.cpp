@@ -12,35 +12,38 @@ namespace acd {
 
 namespace {
 
-// The faces' directed edges as sorted keys: whether b -> a is used is one binary search.
-class DirectedEdges
+// Per corner 3f+k: whether the face's edge F[f][k] -> F[f][k+1] is also used the other way round.
+// One sort of the undirected edges, each use marked with its direction.
+std::vector<char> matched_corners(const std::vector<Tri>& F)
 {
-public:
-	explicit DirectedEdges(const TriMesh& m)
-	{
-		keys.reserve(3 * m.F.size());
-		for (const Tri& t : m.F)
-			for (int k = 0; k < 3; ++k) keys.push_back(key(t[k], t[(k + 1) % 3]));
-		std::sort(keys.begin(), keys.end());
-	}
-	bool has(int a, int b) const { return std::binary_search(keys.begin(), keys.end(), key(a, b)); }
-	// The vertices of the edges used one way only, sorted.
-	std::vector<int> unmatched_ends() const
-	{
-		std::vector<int> ends;
-		for (std::uint64_t k : keys) {
-			const int a = (int) (k >> 32), b = (int) (k & 0xffffffffu);
-			if (!has(b, a)) ends.push_back(a), ends.push_back(b);
+	std::vector<std::pair<std::uint64_t, int>> e;   // (undirected edge, corner * 2 + runs downward)
+	e.reserve(3 * F.size());
+	for (int f = 0; f < (int) F.size(); ++f)
+		for (int k = 0; k < 3; ++k) {
+			const int a = F[f][k], b = F[f][(k + 1) % 3];
+			e.push_back({(std::uint64_t) (std::uint32_t) std::min(a, b) << 32 | (std::uint32_t) std::max(a, b), 2 * (3 * f + k) + (a > b)});
 		}
-		std::sort(ends.begin(), ends.end());
-		ends.erase(std::unique(ends.begin(), ends.end()), ends.end());
-		return ends;
+	std::sort(e.begin(), e.end());
+	std::vector<char> matched(e.size(), 0);
+	for (size_t i = 0, j; i < e.size(); i = j) {
+		bool way[2] = {false, false};
+		for (j = i; j < e.size() && e[j].first == e[i].first; ++j) way[e[j].second & 1] = true;
+		const bool loop = (e[i].first >> 32) == (e[i].first & 0xffffffffu);   // a -> a is its own reverse
+		for (size_t k = i; k < j; ++k) matched[e[k].second >> 1] = loop || way[!(e[k].second & 1)];
 	}
+	return matched;
+}
 
-private:
-	static std::uint64_t key(int a, int b) { return (std::uint64_t) (std::uint32_t) a << 32 | (std::uint32_t) b; }
-	std::vector<std::uint64_t> keys;
-};
+// The vertices of the edges used one way only, sorted.
+std::vector<int> unmatched_ends(const std::vector<Tri>& F, const std::vector<char>& matched)
+{
+	std::vector<int> ends;
+	for (size_t c = 0; c < matched.size(); ++c)
+		if (!matched[c]) ends.push_back(F[c / 3][c % 3]), ends.push_back(F[c / 3][(c % 3 + 1) % 3]);
+	std::sort(ends.begin(), ends.end());
+	ends.erase(std::unique(ends.begin(), ends.end()), ends.end());
+	return ends;
+}
 
 // The rim vertices sorted along the axis they spread most on: those that can lie within eps of a
 // segment are one range of them, handed out by id (the order a scan of all of them would meet them).
@@ -81,16 +84,17 @@ private:
 // gets the rim vertices lying on it, and its face is fanned out.
 void close_rims(TriMesh& all, double eps)
 {
-	DirectedEdges directed(all);
-	RimIndex      rims(all.V, directed.unmatched_ends());
+	std::vector<char> matched = matched_corners(all.F);
+	RimIndex          rims(all.V, unmatched_ends(all.F, matched));
 	for (int pass = 0; pass < 8 && !rims.empty(); ++pass) {
 		bool             changed = false;
 		std::vector<Tri> faces;
-		for (const Tri& t : all.F) {
-			int k = 0, w = -1;
+		for (size_t f = 0; f < all.F.size(); ++f) {
+			const Tri& t = all.F[f];
+			int        k = 0, w = -1;
 			for (; k < 3 && w < 0; ++k) {
 				const int a = t[k], b = t[(k + 1) % 3];
-				if (directed.has(b, a)) continue;
+				if (matched[3 * f + k]) continue;
 				const Vec3 ab   = all.V[b] - all.V[a];
 				double     best = 2;
 				for (int v : rims.near(all.V[a], all.V[b], eps)) {
@@ -112,7 +116,7 @@ void close_rims(TriMesh& all, double eps)
 		}
 		all.F.swap(faces);
 		if (!changed) break;
-		directed = DirectedEdges(all);
+		matched = matched_corners(all.F);
 	}
 }
 
