@@ -223,6 +223,10 @@ TriMesh without_needles(const TriMesh& m)
 {
 	using IK = CGAL::Exact_predicates_inexact_constructions_kernel;
 	using SM = CGAL::Surface_mesh<IK::Point_3>;
+	// Most seams leave none: then the repair has nothing to do (its test, exact collinearity, first).
+	const auto point = [&](int v) { return IK::Point_3(m.V[v].x(), m.V[v].y(), m.V[v].z()); };
+	if (std::none_of(m.F.begin(), m.F.end(), [&](const Tri& t) { return CGAL::collinear(point(t[0]), point(t[1]), point(t[2])); }))
+		return m;
 	SM                           sm;
 	std::vector<SM::Vertex_index> id;
 	for (const Vec3& p : m.V) id.push_back(sm.add_vertex(IK::Point_3(p.x(), p.y(), p.z())));
