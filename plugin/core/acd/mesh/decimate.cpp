@@ -60,7 +60,7 @@ public:
 	}
 
 	// One round: false when nothing could be collapsed. The collapses are taken in order; each block of
-	// them is first judged on two cores against the mesh as the block starts, and a judgement is kept
+	// them is first judged on every core against the mesh as the block starts, and a judgement is kept
 	// where no collapse in the block has touched the faces it read (else judged again in turn), so the
 	// round takes exactly the collapses a plain sweep would.
 	bool round(size_t target)
