@@ -70,17 +70,13 @@ public:
 		locked.assign(V.size(), 0);
 		touched.assign(V.size(), -1);
 		size_t faces = F.size(), done = 0;
-		Scratch mine;
 		for (size_t b = 0; b < order.size() && faces > target; b += kBlock) {
 			const size_t e     = std::min(order.size(), b + kBlock);
 			const int    block = (int) (b / kBlock);
 			guess.resize(e - b);
-			parallel_for((e - b + 1023) / 1024, [&](size_t k) {
-				Scratch s;
-				for (size_t i = b + k * 1024; i < std::min(e, b + (k + 1) * 1024); ++i) {
-					const Collapse& c = order[i];
-					guess[i - b]      = locked[c.u] || locked[c.v] ? Guess{} : judge(c, s);
-				}
+			parallel_for_chunked(e - b, 1024, [&](size_t k) {
+				const Collapse& c = order[b + k];
+				guess[k]          = locked[c.u] || locked[c.v] ? Guess{} : judge(c);
 			});
 			for (size_t i = b; i < e && faces > target; ++i) {
 				const Collapse& c = order[i];
@@ -88,7 +84,7 @@ public:
 				const Guess& g     = guess[i - b];
 				const bool   fresh = touched[c.u] != block && touched[c.v] != block &&
 				                   (g.opposite[0] < 0 || (touched[g.opposite[0]] != block && touched[g.opposite[1]] != block));
-				if (!(fresh ? g.ok : judge(c, mine).ok)) continue;
+				if (!(fresh ? g.ok : judge(c).ok)) continue;
 				touch(c, block);
 				collapse(c);
 				faces -= 2;
@@ -120,7 +116,7 @@ private:
 	std::vector<int>     start, incident;   // faces around each vertex (at the round's start)
 	std::vector<char>    dead, locked;
 	std::vector<int>     touched;   // the last block of the round whose collapses changed a vertex's faces
-	struct Scratch
+	struct Scratch   // judge()'s
 	{
 		std::vector<int> ring[2], opposite, common;
 	};
@@ -206,9 +202,10 @@ private:
 	// The link condition (the two ends share exactly the edge's two opposite vertices, each left with
 	// three neighbours at least) and no face turned or flattened. Reads the faces about c.u and c.v,
 	// their vertices, and the faces about the two opposite vertices.
-	Guess judge(const Collapse& c, Scratch& s) const
+	Guess judge(const Collapse& c) const
 	{
-		auto& ring = s.ring;
+		thread_local Scratch s;   // each thread's, kept from call to call
+		auto&                ring = s.ring;
 		auto& opposite = s.opposite;
 		for (auto& r : ring) r.clear();
 		opposite.clear(), s.common.clear();

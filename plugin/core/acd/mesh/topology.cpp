@@ -1,7 +1,37 @@
 #include "acd/mesh/topology.h"
 #include "acd/mesh/measures.h"
+#include "acd/mesh/parallel.h"
 
 namespace acd {
+
+EdgeUses edge_uses(const std::vector<Tri>& F)
+{
+	using Key = unsigned long long;
+	std::vector<std::pair<Key, int>> e;
+	e.reserve(F.size() * 3);
+	for (int f = 0; f < (int) F.size(); ++f)
+		for (int k = 0; k < 3; ++k) {
+			const unsigned a = (unsigned) F[f][k], b = (unsigned) F[f][(k + 1) % 3];
+			e.push_back({(Key) std::min(a, b) << 32 | std::max(a, b), 3 * f + k});
+		}
+	sort_halves(e.begin(), e.end());   // keys with their corner: no two equal
+	EdgeUses u;
+	u.mate.assign(e.size(), -1);
+	u.reversed.assign(e.size(), 0);
+	const auto from = [&](int c) { return F[c / 3][c % 3]; };
+	for (size_t i = 0, j; i < e.size(); i = j) {
+		bool      way[2] = {false, false};   // some use runs from the lower end, from the higher
+		const int low    = (int) (e[i].first >> 32);
+		for (j = i; j < e.size() && e[j].first == e[i].first; ++j) way[from(e[j].second) != low] = true;
+		const bool loop = low == (int) (e[i].first & 0xffffffffu);
+		for (size_t k = i; k < j; ++k) u.reversed[e[k].second] = loop || way[from(e[k].second) == low];
+		if (j - i == 1) ++u.boundary;
+		else if (j - i > 2) ++u.nonmanifold;
+		else if (from(e[i].second) == from(e[i + 1].second)) ++u.misoriented;
+		else u.mate[e[i].second] = e[i + 1].second, u.mate[e[i + 1].second] = e[i].second;
+	}
+	return u;
+}
 
 Topology::Topology(const TriMesh& m)
 {

@@ -7,6 +7,17 @@
 
 namespace acd {
 
+// Each corner's edge (corner 3f+k runs from F[f][k] to F[f][k+1]) found with the other uses of its
+// undirected edge by sorting one array of keys: no hash map and no search per edge, which keeps the
+// checks of a mesh with millions of faces to a fraction of a second. Any faces, closed or not.
+struct EdgeUses
+{
+	long              boundary = 0, nonmanifold = 0, misoriented = 0;   // undirected edges used once, > twice, twice one way
+	std::vector<int>  mate;       // per corner, the corner using its edge the other way (-1: none, or not one)
+	std::vector<char> reversed;   // per corner, some corner uses its edge the other way (an a -> a edge is its own)
+};
+EdgeUses edge_uses(const std::vector<Tri>& F);
+
 struct Topology
 {
 	// neighbour[f][k]: the face across edge (F[f][k], F[f][(k+1)%3]); -1 if none.

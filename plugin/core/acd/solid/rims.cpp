@@ -1,38 +1,16 @@
 // Closing a surface welded from parts cut apart: rim edges split on one side only, and compaction.
 #include "acd/solid/rims.h"
+#include "acd/mesh/topology.h"
 
 #include <Eigen/Geometry>
 
 #include <algorithm>
-#include <cstdint>
 #include <utility>
 #include <vector>
 
 namespace acd {
 
 namespace {
-
-// Per corner 3f+k: whether the face's edge F[f][k] -> F[f][k+1] is also used the other way round.
-// One sort of the undirected edges, each use marked with its direction.
-std::vector<char> matched_corners(const std::vector<Tri>& F)
-{
-	std::vector<std::pair<std::uint64_t, int>> e;   // (undirected edge, corner * 2 + runs downward)
-	e.reserve(3 * F.size());
-	for (int f = 0; f < (int) F.size(); ++f)
-		for (int k = 0; k < 3; ++k) {
-			const int a = F[f][k], b = F[f][(k + 1) % 3];
-			e.push_back({(std::uint64_t) (std::uint32_t) std::min(a, b) << 32 | (std::uint32_t) std::max(a, b), 2 * (3 * f + k) + (a > b)});
-		}
-	std::sort(e.begin(), e.end());
-	std::vector<char> matched(e.size(), 0);
-	for (size_t i = 0, j; i < e.size(); i = j) {
-		bool way[2] = {false, false};
-		for (j = i; j < e.size() && e[j].first == e[i].first; ++j) way[e[j].second & 1] = true;
-		const bool loop = (e[i].first >> 32) == (e[i].first & 0xffffffffu);   // a -> a is its own reverse
-		for (size_t k = i; k < j; ++k) matched[e[k].second >> 1] = loop || way[!(e[k].second & 1)];
-	}
-	return matched;
-}
 
 // The vertices of the edges used one way only, sorted.
 std::vector<int> unmatched_ends(const std::vector<Tri>& F, const std::vector<char>& matched)
@@ -84,7 +62,7 @@ private:
 // gets the rim vertices lying on it, and its face is fanned out.
 void close_rims(TriMesh& all, double eps)
 {
-	std::vector<char> matched = matched_corners(all.F);
+	std::vector<char> matched = edge_uses(all.F).reversed;
 	RimIndex          rims(all.V, unmatched_ends(all.F, matched));
 	for (int pass = 0; pass < 8 && !rims.empty(); ++pass) {
 		bool             changed = false;
@@ -116,7 +94,7 @@ void close_rims(TriMesh& all, double eps)
 		}
 		all.F.swap(faces);
 		if (!changed) break;
-		matched = matched_corners(all.F);
+		matched = edge_uses(all.F).reversed;
 	}
 }
 

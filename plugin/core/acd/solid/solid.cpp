@@ -17,38 +17,6 @@ namespace acd {
 
 namespace {
 
-// Each corner's edge (corner 3f+k runs from F[f][k] to F[f][k+1]) found with the other uses of its
-// undirected edge by sorting one array of keys: no hash map and no search per edge, which keeps the
-// checks of a mesh with millions of faces to a fraction of a second.
-struct EdgeUses
-{
-	long             boundary = 0, nonmanifold = 0, misoriented = 0;   // undirected edges used once, > twice, twice one way
-	std::vector<int> mate;   // per corner, the corner using its edge the other way (-1: none, or not one)
-};
-EdgeUses edge_uses(const std::vector<Tri>& F)
-{
-	using Key = unsigned long long;
-	std::vector<std::pair<Key, int>> e;
-	e.reserve(F.size() * 3);
-	for (int f = 0; f < (int) F.size(); ++f)
-		for (int k = 0; k < 3; ++k) {
-			const unsigned a = (unsigned) F[f][k], b = (unsigned) F[f][(k + 1) % 3];
-			e.push_back({(Key) std::min(a, b) << 32 | std::max(a, b), 3 * f + k});
-		}
-	sort_halves(e.begin(), e.end());   // keys with their corner: no two equal
-	EdgeUses u;
-	u.mate.assign(e.size(), -1);
-	const auto from = [&](int c) { return F[c / 3][c % 3]; };
-	for (size_t i = 0, j; i < e.size(); i = j) {
-		for (j = i + 1; j < e.size() && e[j].first == e[i].first;) ++j;
-		if (j - i == 1) ++u.boundary;
-		else if (j - i > 2) ++u.nonmanifold;
-		else if (from(e[i].second) == from(e[i + 1].second)) ++u.misoriented;
-		else u.mate[e[i].second] = e[i + 1].second, u.mate[e[i + 1].second] = e[i].second;
-	}
-	return u;
-}
-
 [[noreturn]] void invalid(const std::string& msg, Error::Code code = Error::Unspecified, long count = 0)
 {
 	throw Error(Error::InvalidInput, msg, code, count);
