@@ -1,4 +1,5 @@
 #include "acd/hull/hull.h"
+#include "acd/hull/hull_traits.h"
 #include "acd/mesh/measures.h"
 #include "check.h"
 #include "shapes.h"
@@ -7,6 +8,8 @@
 #include <array>
 #include <random>
 #include <set>
+
+#include <CGAL/convex_hull_3.h>
 
 using namespace acd;
 
@@ -98,3 +101,37 @@ TEST_CASE("distance to the boundary of a cube")
 	CHECK_NEAR(h.distance_to_boundary(Vec3(3, 1, 1)), 1.0, 1e-12);
 }
 
+
+TEST_CASE("the hull traits give CGAL's default hull on points coplanar to rounding")
+{
+	// Points on the faces of a turned cube: coplanar only to rounding, so nearly every test of a point
+	// against a facet falls through the filters to exact arithmetic.
+	using K = CGAL::Exact_predicates_inexact_constructions_kernel;
+	const Eigen::Matrix3d turn = (Eigen::AngleAxisd(0.3, Vec3(1, 2, 3).normalized())).toRotationMatrix();
+	std::mt19937          rng(7);
+	std::uniform_real_distribution<double> u(-1, 1);
+	std::vector<K::Point_3>                pts;
+	for (int i = 0; i < 3000; ++i) {
+		Vec3 p(u(rng), u(rng), u(rng));
+		p[i % 3] = i % 2 ? 1 : -1;
+		p        = turn * p;
+		pts.emplace_back(p.x(), p.y(), p.z());
+	}
+	CGAL::Surface_mesh<K::Point_3> a, b;
+	CGAL::convex_hull_3(pts.begin(), pts.end(), a);
+	CGAL::convex_hull_3(pts.begin(), pts.end(), b, HullTraits());
+	const auto faces = [](const CGAL::Surface_mesh<K::Point_3>& m) {
+		std::vector<std::array<std::array<double, 3>, 3>> f;
+		for (auto fi : m.faces()) {
+			std::array<std::array<double, 3>, 3> t;
+			int k = 0;
+			for (auto v : CGAL::vertices_around_face(m.halfedge(fi), m)) t[k++] = {m.point(v).x(), m.point(v).y(), m.point(v).z()};
+			std::rotate(t.begin(), std::min_element(t.begin(), t.end()), t.end());
+			f.push_back(t);
+		}
+		std::sort(f.begin(), f.end());
+		return f;
+	};
+	CHECK(a.number_of_vertices() > 8);   // the rounding leaves points beyond the cube's corners
+	CHECK(faces(a) == faces(b));
+}

@@ -3,6 +3,7 @@
 #include "acd/decompose3/merge.h"
 #include "acd/solid/glue.h"
 #include "acd/hull/hull_reach.h"
+#include "acd/hull/hull_traits.h"
 #include "acd/mesh/parallel.h"
 #include "acd/mesh/measures.h"
 #include "acd/solid/solid.h"
@@ -38,7 +39,7 @@ std::vector<Vec3> extreme_points(const std::vector<Vec3>& pts)
 	using K = CGAL::Exact_predicates_inexact_constructions_kernel;
 	std::vector<K::Point_3> in, out;
 	for (const Vec3& p : pts) in.emplace_back(p.x(), p.y(), p.z());
-	CGAL::extreme_points_3(in, std::back_inserter(out));
+	CGAL::extreme_points_3(in, std::back_inserter(out), HullTraits());
 	std::vector<Vec3> e;
 	for (const K::Point_3& p : out) e.emplace_back(p.x(), p.y(), p.z());
 	std::sort(e.begin(), e.end(), [](const Vec3& a, const Vec3& b) { return std::lexicographical_compare(a.data(), a.data() + 3, b.data(), b.data() + 3); });

@@ -1,4 +1,5 @@
 #include "acd/hull/hull.h"
+#include "acd/hull/hull_traits.h"
 #include "acd/mesh/disjoint_sets.h"
 #include "acd/mesh/measures.h"
 
@@ -71,7 +72,7 @@ SMesh cgal_hull(const std::vector<Vec3>& input, std::unordered_map<Point, int, B
 	}
 	if (index.size() < 4) throw Error(Error::InvalidInput, "Fewer than 4 distinct points: no volume.");
 	SMesh sm;
-	CGAL::convex_hull_3(pts.begin(), pts.end(), sm);
+	CGAL::convex_hull_3(pts.begin(), pts.end(), sm, HullTraits());
 	if (sm.number_of_faces() < 4 || !CGAL::is_triangle_mesh(sm))
 		throw Error(Error::InvalidInput, "The points are coplanar: the shape encloses no volume.");
 	return sm;
