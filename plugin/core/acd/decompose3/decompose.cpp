@@ -1,6 +1,7 @@
 #include "acd/decompose3/decompose.h"
 #include "acd/decompose3/cut_planes.h"
 #include "acd/hull/hull_reach.h"
+#include "acd/decompose3/measure_memo.h"
 #include "acd/decompose3/merge.h"
 #include "acd/decompose3/proxy_search.h"
 #include "acd/mesh/parallel.h"
@@ -212,7 +213,10 @@ struct Cut
 class Driver : public Driving<Driver, Decomposition, DecomposeOptions>
 {
 public:
-	explicit Driver(const DecomposeOptions& opt) : Driving(opt, opt.hole_handling == HoleHandling::KeepCavities, kMaxDepth) {}
+	Driver(const DecomposeOptions& opt, MeasureMemo* memo)
+	    : Driving(opt, opt.hole_handling == HoleHandling::KeepCavities, kMaxDepth), memo(memo)
+	{
+	}
 
 	Decomposition run(const Solid& solid, MeasuredPtr root)
 	{
@@ -242,6 +246,7 @@ public:
 	void forget(int id) { measured[id].reset(); }
 
 private:
+	MeasureMemo* const                           memo;       // measures shared with another search (or none)
 	std::vector<std::shared_ptr<const Measured>> measured;   // kept while a node waits to be cut
 	std::unordered_map<int, int>           films;      // per node: films dropped (bounded)
 	std::unordered_set<int>                halved;     // nodes cut by halve()
@@ -261,7 +266,7 @@ private:
 	void measure_node(int id, std::shared_ptr<const Measured> ms = nullptr)
 	{
 		Node& n = D.nodes[id];
-		if (!ms) ms = std::make_shared<const Measured>(n.mesh, keep, opt.tau);
+		if (!ms) ms = measure(n.mesh);
 		take_measures(n, *ms);
 		if (rec.needs_cut(n)) measured[id] = std::move(ms);
 	}
@@ -360,12 +365,19 @@ private:
 		return std::min(va, vb) < 1e-3 * D.nodes[id].volume && chip > opt.tau && rest >= 0.99 * D.nodes[id].concavity;
 	}
 
+	// A mesh's measure, from the memo when another search made it.
+	MeasuredPtr measure(const TriMesh& m) const
+	{
+		const auto make = [&] { return std::make_shared<const Measured>(m, keep, opt.tau); };
+		return memo ? memo->find_or_make(m, opt.tau, keep, make) : make();
+	}
+
 	// The trial's two parts measured (false: one of them is beyond `beat`, the other left unmeasured).
 	// `both_cores` measures the two at once; otherwise the larger part goes first, as the deep notch
 	// is more often there.
 	bool measure_parts(Trial& t, double va, double vb, double beat, bool both_cores) const
 	{
-		const auto measure = [&](int s) { t.measures[s] = std::make_shared<const Measured>(t.so.parts[s], keep, opt.tau); };
+		const auto measure = [&](int s) { t.measures[s] = this->measure(t.so.parts[s]); };
 		if (both_cores) {
 			parallel_for(2, [&](size_t s) { measure((int) s); });
 			return true;
@@ -654,9 +666,9 @@ private:
 
 } // namespace
 
-Decomposition cut_tree(const Solid& solid, const DecomposeOptions& opt, MeasuredPtr root)
+Decomposition cut_tree(const Solid& solid, const DecomposeOptions& opt, MeasuredPtr root, MeasureMemo* memo)
 {
-	return Driver(opt).run(solid, std::move(root));
+	return Driver(opt, memo).run(solid, std::move(root));
 }
 
 MeasuredPtr measure_node(Node& n, bool keep_cavities, double tau)
@@ -690,8 +702,9 @@ Decomposition search_rules(const Solid& unit, const DecomposeOptions& opt)
 	if (both && opt.progress)
 		o.progress = [&](int pct, const char* msg) { return opt.progress(pct / 2, msg); };
 	o.pick_rule = PickRule::WorseHalf;
-	MergeMemo     memo;   // the two trees share their first cuts, and their merges many unions
-	Decomposition D = search(unit, o, {}, both ? &memo : nullptr);
+	MergeMemo     memo;       // the two trees share their first cuts, and their merges many unions
+	MeasureMemo   measures;   // and the parts their planes make at the nodes they share
+	Decomposition D = search(unit, o, {}, both ? &memo : nullptr, both ? &measures : nullptr);
 	if (!both) return D;
 	if (opt.time_limit_seconds > 0) {
 		o.time_limit_seconds -= std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -699,7 +712,7 @@ Decomposition search_rules(const Solid& unit, const DecomposeOptions& opt)
 	}
 	if (opt.progress) o.progress = [&](int pct, const char* msg) { return opt.progress(50 + pct / 2, msg); };
 	o.pick_rule = PickRule::PartsNeeded;
-	Decomposition E = search(unit, o, {}, &memo);
+	Decomposition E = search(unit, o, {}, &memo, &measures);
 	if (!better(E, D)) return D;
 	E.pick_rule = PickRule::PartsNeeded;
 	return E;

@@ -116,10 +116,13 @@ void renumber(Node& n, const std::vector<int>& id);
 // decompose()'s stages, for the proxy search (proxy_search.h). A node's measures from its mesh, as the
 // cuts take them; the measure itself is returned, so that a part that fails the certificate is not
 // measured again as the root of its own search. The cut tree of a solid centred and at unit size (no
-// merge); `root`: the solid's mesh measured so already (with the same options), or none.
+// merge); `root`: the solid's mesh measured so already (with the same options), or none; `memo`:
+// measures to take and keep (measure_memo.h), or none.
 struct Measured;
 using MeasuredPtr = std::shared_ptr<const Measured>;
+class MeasureMemo;
 MeasuredPtr   measure_node(Node& n, bool keep_cavities, double tau);
-Decomposition cut_tree(const Solid& solid, const DecomposeOptions& options, MeasuredPtr root = nullptr);
+Decomposition cut_tree(const Solid& solid, const DecomposeOptions& options, MeasuredPtr root = nullptr,
+                       MeasureMemo* memo = nullptr);
 
 } // namespace acd

@@ -5,6 +5,7 @@
 #include "acd/hull/hull_reach.h"
 #include "acd/hull/hull_traits.h"
 #include "acd/mesh/parallel.h"
+#include "acd/mesh/content_hash.h"
 #include "acd/mesh/measures.h"
 #include "acd/solid/solid.h"
 
@@ -98,25 +99,6 @@ std::vector<int> leaves_below(const Decomposition& D, int id)
 		else stack.insert(stack.end(), {n.child[1], n.child[0]});
 	}
 	return out;
-}
-
-// A 64-bit hash of raw words, each word mixed in (splitmix64's finaliser).
-std::uint64_t mix(std::uint64_t h, const void* data, size_t bytes)
-{
-	const unsigned char* p = static_cast<const unsigned char*>(data);
-	for (size_t i = 0; i < bytes; i += 8) {
-		std::uint64_t w = 0;
-		std::memcpy(&w, p + i, std::min<size_t>(8, bytes - i));
-		h ^= w + 0x9e3779b97f4a7c15ULL + (h << 6) + (h >> 2);
-		h ^= h >> 30, h *= 0xbf58476d1ce4e5b9ULL, h ^= h >> 27, h *= 0x94d049bb133111ebULL, h ^= h >> 31;
-	}
-	return h;
-}
-
-std::uint64_t content_hash(const TriMesh& m)
-{
-	const std::uint64_t sizes[2] = {m.V.size(), m.F.size()};
-	return mix(mix(mix(0, sizes, sizeof sizes), m.V.data(), m.V.size() * sizeof(Vec3)), m.F.data(), m.F.size() * sizeof(Tri));
 }
 
 std::uint64_t planes_hash(const std::vector<Plane>& planes)

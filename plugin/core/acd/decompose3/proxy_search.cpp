@@ -83,8 +83,8 @@ bool split_solids(const TriMesh& mesh, const TriMesh& first, std::array<TriMesh,
 class ProxySearch
 {
 public:
-	ProxySearch(const DecomposeOptions& o, const ProxySettings& ps, MergeMemo* memo)
-	    : o(o), ps(ps), memo(memo), keep(o.hole_handling == HoleHandling::KeepCavities),
+	ProxySearch(const DecomposeOptions& o, const ProxySettings& ps, MergeMemo* memo, MeasureMemo* measures)
+	    : o(o), ps(ps), memo(memo), measures(measures), keep(o.hole_handling == HoleHandling::KeepCavities),
 	      start(std::chrono::steady_clock::now())
 	{
 	}
@@ -107,7 +107,8 @@ public:
 private:
 	const DecomposeOptions&                     o;
 	const ProxySettings&                        ps;
-	MergeMemo* const                            memo;   // unions an earlier search measured (or none)
+	MergeMemo* const                            memo;       // unions an earlier search measured (or none)
+	MeasureMemo* const                          measures;   // and parts (or none)
 	const bool                                  keep;
 	const std::chrono::steady_clock::time_point start;
 	Decomposition                               D;
@@ -379,7 +380,7 @@ private:
 	{
 		DecomposeOptions eo   = with;
 		eo.time_limit_seconds = left();
-		Decomposition sub     = cut_tree(s, eo, std::move(root));
+		Decomposition sub     = cut_tree(s, eo, std::move(root), measures);
 		if (merge) merge_parts(sub, o.tau, with.progress, left(), memo);
 		return sub;
 	}
@@ -508,9 +509,10 @@ private:
 
 } // namespace
 
-Decomposition search(const Solid& solid, const DecomposeOptions& o, const ProxySettings& ps, MergeMemo* memo)
+Decomposition search(const Solid& solid, const DecomposeOptions& o, const ProxySettings& ps, MergeMemo* memo,
+                     MeasureMemo* measures)
 {
-	return ProxySearch(o, ps, memo).run(solid);
+	return ProxySearch(o, ps, memo, measures).run(solid);
 }
 
 } // namespace acd

@@ -20,11 +20,13 @@ struct ProxySettings
 };
 
 class MergeMemo;
+class MeasureMemo;
 
 // The cut tree and (options.merge_parts) the merged parts of a solid centred and at unit size; on a
 // proxy when it has more than settings.above faces and no max_parts bound, else on the solid. `memo`:
-// unions an earlier search of the solid measured (merge.h).
+// unions an earlier search of the solid measured (merge.h); `measures`: the parts it measured
+// (measure_memo.h).
 Decomposition search(const Solid& solid, const DecomposeOptions& options, const ProxySettings& settings = {},
-                     MergeMemo* memo = nullptr);
+                     MergeMemo* memo = nullptr, MeasureMemo* measures = nullptr);
 
 } // namespace acd
