@@ -377,15 +377,15 @@ private:
 	// is more often there.
 	bool measure_parts(Trial& t, double va, double vb, double beat, bool both_cores) const
 	{
-		const auto measure = [&](int s) { t.measures[s] = this->measure(t.so.parts[s]); };
+		const auto measure_part = [&](int s) { t.measures[s] = measure(t.so.parts[s]); };
 		if (both_cores) {
-			parallel_for(2, [&](size_t s) { measure((int) s); });
+			parallel_for(2, [&](size_t s) { measure_part((int) s); });
 			return true;
 		}
 		const int larger = va < vb ? 1 : 0;
-		measure(larger);
+		measure_part(larger);
 		if (!(t.measures[larger]->rep.max_concavity < beat)) return false;
-		measure(1 - larger);
+		measure_part(1 - larger);
 		return true;
 	}
 
