@@ -122,7 +122,7 @@ def run_child(method, params, inp, hulls_out):
                 hulls.append((m.vertex_matrix(), m.face_matrix()))
         info["concavity"] = res["max_concavity"]
         info["bbox_diag"] = ms.mesh(0).bounding_box().diagonal()
-        info.update({k: res.get(k) for k in ("preprocessing_time", "preprocessing_done", "holes_filled", "wrap_capped", "wrap_skin",
+        info.update({k: res.get(k) for k in ("preprocessing_time", "preprocessing_done", "holes_filled", "holes_on_planes", "wrap_capped", "wrap_skin",
                                          "wrap_alpha_used", "solid_to_input", "input_to_solid", "size")})
         info.update(parts_fingerprint(ms))
     else:

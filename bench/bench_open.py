@@ -134,7 +134,7 @@ def prep(r):
         how = "capped" if r.get("wrap_capped") else "skin" if r.get("wrap_skin") else "wrapped"
         return f"wrap {r['wrap_alpha_used']:.3g}%, {how}"
     if r.get("preprocessing_done") == 3:
-        return f"{r.get('holes_filled')} holes filled"
+        return f"{r.get('holes_filled')} holes filled ({r.get('holes_on_planes') or 0} on planes)"
     return ("as given", "welded")[r.get("preprocessing_done", 0)]
 
 

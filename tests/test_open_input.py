@@ -13,7 +13,7 @@ import pytest
 
 import pymeshlab_acd
 from support import cad_solids
-from support.meshes import SHARED
+from support.meshes import SHARED, volume
 from support.open_meshes import (covered, diagonal, flipped_patch, punched, reach_beyond, refined, sheet, soup,
                                  surface_samples)
 
@@ -60,6 +60,19 @@ def test_holes_of_growing_size_close_along_the_surface(name, holes):
     # the caps lie across the holes, no farther from the input than the largest hole's radius
     assert res["solid_to_input"] <= (0.08 if holes > 1 else 0.02) * diagonal(V) + res["tau_model_units"]
     assert res["preprocessing_time"] > 0
+
+
+@pytest.mark.parametrize("holes", [1, 3])
+@pytest.mark.parametrize("name", ["t_slot_rail", "bossed_plate"])
+def test_holes_across_cad_edges_close_on_the_solids_own_planes(name, holes):
+    """Faces missing across a CAD solid's edges and corners: the holes close on the planes their rims run on,
+    so the parts fill the closed solid itself (its volume, to rounding), not a faired bulge or a chamfer."""
+    V, F = closed(name)
+    OV, OF = punched(V, F, holes)
+    hulls, parts, res = pymeshlab_acd.convex_decomposition(OV, OF, return_parts=True)
+    assert res["holes_filled"] == res["holes_on_planes"] >= holes, res
+    assert abs(sum(volume(*p) for p in parts) - volume(V, F)) < 1e-7 * abs(volume(V, F))
+    check_solid_within(hulls, res, V, F)
 
 
 @pytest.mark.parametrize("dirt", ["soup", "flipped_patch"])

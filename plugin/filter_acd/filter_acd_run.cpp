@@ -212,9 +212,9 @@ void FilterACD::log_prepared(const acd::PreparedSolid& p)
 		log("Not decomposable as given (%s) Welding %d vertices within 1e-5 of its size made it a valid solid; it is "
 		    "decomposed welded, not wrapped.", p.reason.c_str(), p.welded);
 	if (p.done == acd::PreparedSolid::Filled)
-		log("Not decomposable as given (%s) Its %d holes were filled and faired (the patches continue its surface); "
-		    "it is decomposed filled, not wrapped. The patches reach %g from the input.", p.reason.c_str(), p.filled,
-		    p.to_input);
+		log("Not decomposable as given (%s) Its %d holes were filled (%d on the planes their rims run on, the rest "
+		    "faired: the patches continue its surface); it is decomposed filled, not wrapped. The patches reach %g from "
+		    "the input.", p.reason.c_str(), p.filled, p.on_planes, p.to_input);
 	if (p.done == acd::PreparedSolid::Wrapped && !p.reason.empty())
 		log("Not decomposable as given (%s) It is alpha wrapped: %d wrap(s), alpha %g%% kept, holding %.0f%% of the "
 		    "input's interior.", p.reason.c_str(), p.tries, p.alpha / p.size * 100, 100 * p.inside);
@@ -300,6 +300,7 @@ FilterACD::decompose(const RichParameterList& par, MeshDocument& md, vcg::CallBa
 		{"welded_vertices", run.prepared.welded},
 		{"preprocessing_done", (int) run.prepared.done},   // 0 as given, 1 welded, 2 alpha wrapped, 3 holes filled
 		{"holes_filled", run.prepared.filled},
+		{"holes_on_planes", run.prepared.on_planes},   // of them, closed on the planes their rims run on
 		{"self_crossing_wrapped", !run.fallback.empty()},
 		{"wrap_capped", run.prepared.capped},   // openings closed along the input's winding-number level set
 		{"wrap_skin", run.prepared.skin},       // the input encloses no solid: the wrap is a skin about it

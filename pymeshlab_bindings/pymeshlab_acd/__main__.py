@@ -84,7 +84,8 @@ def cmd_decompose(a):
               f"the solid reaches {res['solid_to_input']:.4g} from the input, the input {res['input_to_solid']:.4g} "
               f"from it")
     elif res.get("holes_filled"):
-        print(f"preprocessing    {res['holes_filled']} holes filled and faired (the input is not a closed solid); "
+        print(f"preprocessing    {res['holes_filled']} holes filled ({res.get('holes_on_planes', 0)} on the planes their "
+              f"rims run on, the rest faired; the input is not a closed solid); "
               f"the patches reach {res['solid_to_input']:.4g} from the input")
     elif res.get("welded_vertices"):
         print(f"preprocessing    {res['welded_vertices']} duplicate vertices welded")

@@ -1,5 +1,6 @@
 #include "acd/prepare/fill_holes.h"
 #include "acd/mesh/orient.h"
+#include "acd/prepare/plane_fill.h"
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Polygon_mesh_processing/orient_polygon_soup.h>
@@ -31,6 +32,8 @@ constexpr int kRings = 3;
 // Rims up to this long may fall back to the triangulation search whose cost grows with the cube of
 // their length (27 million steps here) when no patch is found among the Delaunay faces.
 constexpr size_t kCubicRim = 300;
+// Points within this share of the surface's box diagonal of a plane lie on it (plane_fill.h).
+constexpr double kOnPlane = 1e-6;
 
 struct Edge
 {
@@ -219,6 +222,53 @@ bool breaks_edges(const TriMesh& m, const std::vector<int>& faces, const std::ve
 	return false;
 }
 
+// The hole's border edges as their faces run them, with those faces.
+std::vector<RimEdge> rim_edges(const TriMesh& m, const VertexFaces& vf, const Rim& rim)
+{
+	std::vector<RimEdge> out;
+	for (const auto& [a, b] : rim)
+		for (int i = vf.start[a]; i < vf.start[a + 1]; ++i) {
+			const Tri& t = m.F[vf.face[i]];
+			for (int k = 0; k < 3; ++k) {
+				const int u = t[k], v = t[(k + 1) % 3];
+				if ((u == a && v == b) || (u == b && v == a)) out.push_back({u, v, vf.face[i]});
+			}
+		}
+	return out;
+}
+
+// Whether the patch crosses itself or the faces about the hole.
+bool crosses(const TriMesh& m, const std::vector<int>& faces, const Patch& p)
+{
+	std::map<int, size_t>                    local;
+	std::vector<Point>                       pts;
+	std::vector<std::array<size_t, 3>>       soup;
+	const auto                               at = [&](int v) {
+        const auto it = local.emplace(v, pts.size());
+        if (it.second) {
+            const Vec3& q = v >= 0 ? m.V[v] : p.V[-1 - v];
+            pts.emplace_back(q.x(), q.y(), q.z());
+        }
+        return it.first->second;
+	};
+	for (int f : faces) soup.push_back({at(m.F[f][0]), at(m.F[f][1]), at(m.F[f][2])});
+	for (const Tri& t : p.F) soup.push_back({at(t[0]), at(t[1]), at(t[2])});
+	return PMP::does_triangle_soup_self_intersect(pts, soup);
+}
+
+// The hole closed on the planes its rim runs on (plane_fill.h), if it is such a hole and the patch
+// neither crosses the faces about it nor repeats an edge of the surface.
+std::optional<Patch> plane_one(const TriMesh& m, const std::vector<int>& faces, const std::vector<RimEdge>& rim, double eps)
+{
+	std::optional<PlanePatch> pp = plane_patch(m, rim, eps);
+	if (!pp) return std::nullopt;
+	Patch p;
+	p.V = std::move(pp->corners);
+	p.F = std::move(pp->faces);
+	if (breaks_edges(m, faces, p.F) || crosses(m, faces, p)) return std::nullopt;
+	return p;
+}
+
 // The hole filled in its neighbourhood, faired or flat; empty when the triangulation finds no patch, or
 // (faired) when the patch crosses the neighbourhood.
 std::optional<Patch> fill_one(const TriMesh& m, const std::vector<int>& faces, const Rim& rim, bool fair)
@@ -283,12 +333,18 @@ std::optional<FilledHoles> fill_holes(const TriMesh& surface, int max_holes, int
 		if ((int) h.rim.size() > max_rim) return std::nullopt;
 	const VertexFaces vf(m);
 	std::vector<char> vin(m.V.size(), 0);
+	Vec3 lo = m.V[m.F[0][0]], hi = lo;
+	for (const Tri& t : m.F)
+		for (int v : t) lo = lo.cwiseMin(m.V[v]), hi = hi.cwiseMax(m.V[v]);
+	const double eps = kOnPlane * (hi - lo).norm();
 	FilledHoles       r;
 	r.mesh        = m;
 	r.first_patch = m.F.size();
 	for (const Hole& hole : holes) {
 		const std::vector<int> faces = rings_about(m, vf, hole.vertices, vin);
-		std::optional<Patch>   p     = fill_one(m, faces, hole.rim, true);
+		std::optional<Patch>   p     = plane_one(m, faces, rim_edges(m, vf, hole.rim), eps);
+		r.planar += p.has_value();
+		if (!p) p = fill_one(m, faces, hole.rim, true);
 		if (!p) p = fill_one(m, faces, hole.rim, false);
 		if (!p) return std::nullopt;
 		const int base = (int) r.mesh.V.size();

@@ -17,6 +17,7 @@ struct FilledHoles
 	                      // then the patches' vertices and faces
 	size_t  first_patch = 0;   // mesh.F from here on are the patches' faces
 	int     holes  = 0;   // holes filled (holes that touch at a corner count as one)
+	int     planar = 0;   // of them, those closed on the planes their rims run on (plane_fill.h)
 	int     faired = 0;   // of them, those faired; a faired patch that crosses the faces about it (a bulge
 	                      // beside a sharp edge) is replaced by the flat one, triangulated and refined only
 };

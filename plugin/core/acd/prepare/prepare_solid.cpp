@@ -83,6 +83,7 @@ PreparedSolid prepare_solid(const TriMesh& mesh, const PrepareOptions& o)
 				         : w.welded > 0 ? PreparedSolid::Welded : PreparedSolid::AsGiven;
 				p.welded = w.welded;
 				p.filled = w.filled;
+				p.on_planes = w.on_planes;
 			}
 		}
 	}

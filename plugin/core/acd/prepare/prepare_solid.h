@@ -39,7 +39,8 @@ struct PreparedSolid
 	Solid       solid;
 	Done        done    = AsGiven;
 	int         welded  = 0;      // vertices merged into another
-	int         filled  = 0;      // holes filled and faired (Filled)
+	int         filled  = 0;      // holes filled (Filled): faired, or on the planes their rims run on
+	int         on_planes = 0;    // of them, those on planes
 	double      alpha   = 0;      // the wrap's alpha kept, model units (0: not wrapped)
 	double      alpha_share = 0;  // the same, a share of size
 	double      offset  = 0;      // the wrap's offset, model units

@@ -216,6 +216,7 @@ bool filled_solid(const TriMesh& welded, WrapSolidResult& r, InputTree& t)
 	r.from_input = NearestOnSurface(f->mesh).farthest(used_vertices(t.input));
 	r.mesh       = std::move(f->mesh);
 	r.filled     = f->holes;
+	r.on_planes  = f->planar;
 	r.wrapped    = false;
 	return true;
 }

@@ -21,6 +21,7 @@ struct WrapSolidResult
 	double      inside  = 1;        // share of the input's interior samples inside the wrap kept
 	int         tries   = 0;        // wraps computed (the last one is not always the one kept)
 	int         filled  = 0;        // holes filled and faired in the input itself (not wrapped)
+	int         on_planes = 0;      // of them, closed on the planes their rims run on (plane_fill.h)
 	bool        capped  = false;    // the openings were closed along the winding number's level set
 	bool        skin    = false;    // the input encloses no solid: the wrap is a thin skin about it
 	double      cap_share = 0;      // share of the level set's area that spans openings

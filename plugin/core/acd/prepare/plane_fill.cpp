@@ -1,0 +1,259 @@
+#include "acd/prepare/plane_fill.h"
+
+#include <CGAL/Constrained_Delaunay_triangulation_2.h>
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Triangulation_face_base_with_info_2.h>
+#include <CGAL/Triangulation_vertex_base_with_info_2.h>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <set>
+#include <utility>
+
+namespace acd {
+
+namespace {
+
+using K   = CGAL::Exact_predicates_inexact_constructions_kernel;
+using Vb  = CGAL::Triangulation_vertex_base_with_info_2<int, K>;
+using Fbi = CGAL::Triangulation_face_base_with_info_2<int, K>;   // nesting depth: odd inside the polygon
+using Fb  = CGAL::Constrained_triangulation_face_base_2<K, Fbi>;
+using Tds = CGAL::Triangulation_data_structure_2<Vb, Fb>;
+// Constraints that cross are no simple polygon: refused, not split.
+using CDT = CGAL::Constrained_Delaunay_triangulation_2<K, Tds, CGAL::No_constraint_intersection_tag>;
+
+// Faces of one plane agree in their normals to within this angle (radians), besides lying within eps.
+constexpr double kAngle = 1e-3;
+// Three planes meet at one corner only if their normals' triple product is at least this.
+constexpr double kCorner = 1e-2;
+
+// The rim as one cycle, each edge's `to` the next one's `from`; empty if it is not one simple cycle.
+std::vector<RimEdge> cycle_of(const std::vector<RimEdge>& rim)
+{
+	std::map<int, size_t> from;
+	for (size_t i = 0; i < rim.size(); ++i)
+		if (!from.emplace(rim[i].from, i).second) return {};
+	std::vector<RimEdge> c;
+	for (size_t i = 0; c.size() < rim.size(); i = from.at(rim[i].to)) {
+		if (!c.empty() && i == 0) return {};
+		c.push_back(rim[i]);
+		if (!from.count(rim[i].to)) return {};
+	}
+	return c.back().to == c.front().from ? c : std::vector<RimEdge>{};
+}
+
+std::optional<Vec3> unit_normal(const TriMesh& m, int f)
+{
+	const Vec3 n = (m.V[m.F[f][1]] - m.V[m.F[f][0]]).cross(m.V[m.F[f][2]] - m.V[m.F[f][0]]);
+	if (!(n.norm() > 0)) return std::nullopt;
+	return n.normalized();
+}
+
+// Face f lies on plane pl: its corners within eps and its normal within kAngle.
+bool on_plane(const TriMesh& m, int f, const Plane& pl, double eps)
+{
+	const std::optional<Vec3> n = unit_normal(m, f);
+	return n && pl.holds(m.V, m.F[f], eps) && n->dot(pl.n) >= std::cos(kAngle);
+}
+
+struct Run
+{
+	size_t first, count;   // edges of the cycle
+	int    plane;
+};
+
+// An edge of the rim along a crease has its face on one plane and the missing face on the other: it
+// belongs to the stretch of the other plane, so that each plane's patch ends on the crease.
+void settle_creases(const TriMesh& m, const std::vector<RimEdge>& c, double eps, std::vector<Run>& runs, const std::vector<Plane>& planes)
+{
+	const size_t n = c.size(), R = runs.size();
+	// edge e (its face on plane `own`) lies on plane p as well
+	const auto on = [&](size_t e, int own, int p) {
+		return on_plane(m, c[e % n].face, planes[own], eps) && std::abs(planes[p].eval(m.V[c[e % n].from])) <= eps &&
+		       std::abs(planes[p].eval(m.V[c[e % n].to])) <= eps;
+	};
+	for (size_t r = 0; R > 1 && r < R; ++r) {
+		Run &a = runs[r], &b = runs[(r + 1) % R];
+		while (a.count > 1 && on(a.first + a.count - 1, a.plane, b.plane)) --a.count, ++b.count, b.first = (b.first + n - 1) % n;
+		while (b.count > 1 && on(b.first, b.plane, a.plane)) ++a.count, --b.count, b.first = (b.first + 1) % n;
+	}
+}
+
+// The cycle (rotated to start where a stretch starts) cut into stretches on one plane each, and the
+// distinct planes; false if a face has no normal or a stretch is a single edge.
+bool stretches(const TriMesh& m, std::vector<RimEdge>& c, double eps, std::vector<Run>& runs, std::vector<Plane>& planes)
+{
+	const size_t n = c.size();
+	std::vector<Plane> own(n);
+	for (size_t i = 0; i < n; ++i) {
+		const std::optional<Vec3> nf = unit_normal(m, c[i].face);
+		if (!nf) return false;
+		own[i] = through(m.V[c[i].from], *nf);
+	}
+	size_t start = 0;
+	while (start < n && on_plane(m, c[start].face, own[(start + n - 1) % n], eps)) ++start;
+	if (start == n) start = 0;   // the whole rim on one plane
+	std::rotate(c.begin(), c.begin() + start, c.end());
+	std::rotate(own.begin(), own.begin() + start, own.end());
+	for (size_t i = 0; i < n; ++i) {
+		if (!runs.empty() && on_plane(m, c[i].face, planes[runs.back().plane], eps)) {
+			++runs.back().count;
+			continue;
+		}
+		int p = 0;
+		while (p < (int) planes.size() && !on_plane(m, c[i].face, planes[p], eps)) ++p;
+		if (p == (int) planes.size()) planes.push_back(own[i]);
+		runs.push_back({i, 1, p});
+	}
+	if (!std::all_of(runs.begin(), runs.end(), [](const Run& r) { return r.count >= 2; })) return false;
+	settle_creases(m, c, eps, runs, planes);
+	return true;
+}
+
+// Where planes a, b, c meet, if they meet at one point.
+std::optional<Vec3> corner_of(const Plane& a, const Plane& b, const Plane& c)
+{
+	Eigen::Matrix3d A;
+	A.row(0) = a.n.transpose(), A.row(1) = b.n.transpose(), A.row(2) = c.n.transpose();
+	if (!(std::abs(A.determinant()) >= kCorner)) return std::nullopt;
+	return Vec3(A.partialPivLu().solve(Vec3(a.d, b.d, c.d)));
+}
+
+// The patch's polygons being built: each plane's vertices in rim order, the corners made so far.
+struct Polygons
+{
+	std::vector<std::vector<int>>  of;        // per plane: vertex ids (>= 0 surface, < 0 corner)
+	std::vector<Vec3>              corners;
+	std::map<std::array<int, 3>, int> corner_id;   // the planes that meet there, sorted
+};
+
+// Each plane's polygon: its stretches in rim order, each joined to the next one on the plane along the
+// crease with the plane the rim turns to there (the same at both ends), or through the corner of the
+// plane with the two planes the rim visits in between; false where neither holds.
+bool polygons(const std::vector<RimEdge>& c, const std::vector<Run>& runs, const std::vector<Plane>& planes,
+              const Vec3& lo, const Vec3& hi, Polygons& out)
+{
+	const size_t R = runs.size();
+	out.of.assign(planes.size(), {});
+	const Vec3 margin = Vec3::Constant(0.25 * (hi - lo).norm());
+	for (size_t r = 0; r < R; ++r) {
+		const int P = runs[r].plane;
+		std::vector<int>& poly = out.of[P];
+		for (size_t k = 0; k < runs[r].count; ++k) poly.push_back(c[(runs[r].first + k) % c.size()].from);
+		poly.push_back(c[(runs[r].first + runs[r].count - 1) % c.size()].to);
+		std::set<int> between;
+		size_t        s = (r + 1) % R;
+		for (; runs[s].plane != P; s = (s + 1) % R) between.insert(runs[s].plane);
+		if (between.empty()) {   // the next stretch on P starts where this one ends
+			poly.pop_back();
+			continue;
+		}
+		const int X = runs[(r + 1) % R].plane, Y = runs[(s + R - 1) % R].plane;
+		if (X == Y) continue;
+		if (between.size() != 2) return false;
+		std::array<int, 3> key{P, X, Y};
+		std::sort(key.begin(), key.end());
+		auto it = out.corner_id.find(key);
+		if (it == out.corner_id.end()) {
+			const std::optional<Vec3> q = corner_of(planes[P], planes[X], planes[Y]);
+			if (!q || (q->array() < (lo - margin).array()).any() || (q->array() > (hi + margin).array()).any()) return false;
+			it = out.corner_id.emplace(key, -1 - (int) out.corners.size()).first;
+			out.corners.push_back(*q);
+		}
+		poly.push_back(it->second);
+	}
+	return true;
+}
+
+// The triangles of a simple polygon on plane pl that runs clockwise about pl.n (as a rim runs about
+// its hole), each counterclockwise about pl.n; false if it is not such a polygon.
+bool triangulate(const std::vector<int>& poly, const std::vector<Vec3>& at, const Plane& pl, std::vector<Tri>& out)
+{
+	const Vec3 e1 = pl.n.unitOrthogonal(), e2 = pl.n.cross(e1);
+	std::vector<K::Point_2> pts;
+	double area = 0;
+	for (const Vec3& p : at) pts.emplace_back(p.dot(e1), p.dot(e2));
+	for (size_t i = 0; i < pts.size(); ++i) {
+		const K::Point_2 &a = pts[i], &b = pts[(i + 1) % pts.size()];
+		area += a.x() * b.y() - b.x() * a.y();
+	}
+	if (!(area < 0)) return false;
+	CDT cdt;
+	try {
+		std::vector<CDT::Vertex_handle> vh;
+		for (size_t i = 0; i < pts.size(); ++i) vh.push_back(cdt.insert(pts[i])), vh.back()->info() = poly[i];
+		for (size_t i = 0; i < vh.size(); ++i) cdt.insert_constraint(vh[i], vh[(i + 1) % vh.size()]);
+	}
+	catch (const std::exception&) {
+		return false;
+	}
+	if (cdt.number_of_vertices() != pts.size()) return false;   // a vertex repeated
+	for (CDT::All_faces_iterator f = cdt.all_faces_begin(); f != cdt.all_faces_end(); ++f) f->info() = -1;
+	// Depth: constrained edges crossed from outside, flooded one depth at a time.
+	std::vector<CDT::Face_handle> seeds{cdt.infinite_face()};
+	for (int depth = 0; !seeds.empty(); ++depth) {
+		std::vector<CDT::Face_handle> todo, next;
+		for (CDT::Face_handle f : seeds)
+			if (f->info() < 0) f->info() = depth, todo.push_back(f);
+		for (size_t i = 0; i < todo.size(); ++i)
+			for (int k = 0; k < 3; ++k) {
+				const CDT::Face_handle g = todo[i]->neighbor(k);
+				if (g->info() >= 0) continue;
+				if (cdt.is_constrained({todo[i], k})) next.push_back(g);
+				else g->info() = depth, todo.push_back(g);
+			}
+		seeds = std::move(next);
+	}
+	size_t made = 0;
+	for (CDT::Finite_faces_iterator f = cdt.finite_faces_begin(); f != cdt.finite_faces_end(); ++f) {
+		if (f->info() != 1) {
+			if (f->info() > 1) return false;
+			continue;
+		}
+		out.push_back({f->vertex(0)->info(), f->vertex(1)->info(), f->vertex(2)->info()}), ++made;
+	}
+	return made + 2 == pts.size();
+}
+
+// Every patch edge is a rim edge run the other way (once) or met by the patch's own edge run the other
+// way, and no edge is run twice: the patch closes the hole as one surface.
+bool closes(const std::vector<RimEdge>& c, const std::vector<Tri>& faces)
+{
+	std::set<std::pair<int, int>> run, rim;
+	for (const RimEdge& e : c) rim.insert({e.from, e.to});
+	for (const Tri& t : faces)
+		for (int k = 0; k < 3; ++k)
+			if (!run.insert({t[k], t[(k + 1) % 3]}).second) return false;
+	size_t met = 0;
+	for (const auto& [a, b] : run) {
+		if (rim.count({b, a})) ++met;
+		else if (!run.count({b, a})) return false;
+	}
+	return met == rim.size();
+}
+
+} // namespace
+
+std::optional<PlanePatch> plane_patch(const TriMesh& m, const std::vector<RimEdge>& rim, double eps)
+{
+	std::vector<RimEdge> c = cycle_of(rim);
+	std::vector<Run>     runs;
+	std::vector<Plane>   planes;
+	if (c.size() < 3 || !stretches(m, c, eps, runs, planes)) return std::nullopt;
+	Vec3 lo = m.V[c[0].from], hi = lo;
+	for (const RimEdge& e : c) lo = lo.cwiseMin(m.V[e.from]), hi = hi.cwiseMax(m.V[e.from]);
+	Polygons pg;
+	if (!polygons(c, runs, planes, lo, hi, pg)) return std::nullopt;
+	PlanePatch out;
+	out.corners = pg.corners;
+	for (size_t p = 0; p < planes.size(); ++p) {
+		std::vector<Vec3> at;
+		for (int v : pg.of[p]) at.push_back(v >= 0 ? m.V[v] : pg.corners[-1 - v]);
+		if (!triangulate(pg.of[p], at, planes[p], out.faces)) return std::nullopt;
+	}
+	if (!closes(c, out.faces)) return std::nullopt;
+	return out;
+}
+
+} // namespace acd
