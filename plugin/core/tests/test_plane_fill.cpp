@@ -65,7 +65,7 @@ TriMesh turned(TriMesh m, const Eigen::Matrix3d& R)
 
 } // namespace
 
-TEST_CASE("holes across a box's corner, edge and a plate's rim close on the box's own planes")
+TEST_CASE("holes across a box's corner, edge, a plate's rim and a slab's edge close on the box's own planes")
 {
 	const Eigen::Matrix3d R = (Eigen::AngleAxisd(0.7, Vec3(1, 2, 3).normalized())).toRotationMatrix();
 	struct Case
@@ -78,6 +78,7 @@ TEST_CASE("holes across a box's corner, edge and a plate's rim close on the box'
 	    {Vec3(0, 0, 0), Vec3(2, 2, 2), Vec3(2, 2, 2), 0.6, 1},       // three planes meet at the corner
 	    {Vec3(0, 0, 0), Vec3(2, 2, 2), Vec3(2, 2, 1), 0.5, 0},       // two, along the edge
 	    {Vec3(0, 0, 0), Vec3(4, 4, 0.5), Vec3(4, 2, 0.25), 0.7, 0},  // top, rim and bottom of a plate
+	    {Vec3(0, 0, 0), Vec3(2, 0.5, 2), Vec3(2, 0.25, 2), 0.6, 2},  // a slab's short edge, both its corners
 	};
 	for (const Case& c : cases)
 		for (const Eigen::Matrix3d& pose : {Eigen::Matrix3d(Eigen::Matrix3d::Identity()), R}) {

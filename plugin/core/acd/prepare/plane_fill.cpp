@@ -27,6 +27,9 @@ using CDT = CGAL::Constrained_Delaunay_triangulation_2<K, Tds, CGAL::No_constrai
 constexpr double kAngle = 1e-3;
 // Three planes meet at one corner only if their normals' triple product is at least this.
 constexpr double kCorner = 1e-2;
+// A rim on more distinct planes than this is left to the fairing (their ways to meet grow as the
+// Catalan numbers: 132 for 8).
+constexpr int kMostPlanes = 8;
 
 // The rim as one cycle, each edge's `to` the next one's `from`; empty if it is not one simple cycle.
 std::vector<RimEdge> cycle_of(const std::vector<RimEdge>& rim)
@@ -233,6 +236,85 @@ bool closes(const std::vector<RimEdge>& c, const std::vector<Tri>& faces)
 	return met == rim.size();
 }
 
+// The polygons triangulated, if each is simple and they close the hole together.
+std::optional<PlanePatch> patch_of(const TriMesh& m, const std::vector<RimEdge>& c, const std::vector<Plane>& planes, const Polygons& pg)
+{
+	PlanePatch out;
+	out.corners = pg.corners;
+	for (size_t p = 0; p < planes.size(); ++p) {
+		std::vector<Vec3> at;
+		for (int v : pg.of[p]) at.push_back(v >= 0 ? m.V[v] : pg.corners[-1 - v]);
+		if (!triangulate(pg.of[p], at, planes[p], out.faces)) return std::nullopt;
+	}
+	if (!closes(c, out.faces)) return std::nullopt;
+	return out;
+}
+
+using Triangles = std::vector<std::array<int, 3>>;
+
+// Every triangulation of the polygon of vertices lo..hi (in a fixed order).
+std::vector<Triangles> triangulations(int lo, int hi)
+{
+	if (hi - lo < 2) return {Triangles{}};
+	std::vector<Triangles> all;
+	for (int a = lo + 1; a < hi; ++a)
+		for (const Triangles& left : triangulations(lo, a))
+			for (const Triangles& right : triangulations(a, hi)) {
+				Triangles t = left;
+				t.insert(t.end(), right.begin(), right.end());
+				t.push_back({lo, a, hi});
+				all.push_back(std::move(t));
+			}
+	return all;
+}
+
+// Stretches on as many planes as there are stretches are a polygon whose vertices are the planes: each
+// triangulation of it is a way for the planes to meet inside the hole (a triangle, the corner where its
+// three planes meet; a diagonal, the crease of its two). Each stretch's polygon follows it, then the
+// corners of its triangles in turn about it. The way that makes valid polygons of least area is kept.
+std::optional<PlanePatch> corner_tree(const TriMesh& m, const std::vector<RimEdge>& c, const std::vector<Run>& runs,
+                                      const std::vector<Plane>& planes, const Vec3& lo, const Vec3& hi)
+{
+	const int k = (int) runs.size();
+	if (k > kMostPlanes) return std::nullopt;
+	const Vec3                margin = Vec3::Constant(0.25 * (hi - lo).norm());
+	std::optional<PlanePatch> best;
+	double                    least = 0;
+	for (const Triangles& tri : triangulations(0, k - 1)) {
+		Polygons pg;
+		pg.of.assign(planes.size(), {});
+		bool ok = true;
+		for (const std::array<int, 3>& t : tri) {
+			const std::optional<Vec3> q = corner_of(planes[runs[t[0]].plane], planes[runs[t[1]].plane], planes[runs[t[2]].plane]);
+			ok = ok && q && (q->array() >= (lo - margin).array()).all() && (q->array() <= (hi + margin).array()).all();
+			if (ok) pg.corners.push_back(*q);
+		}
+		for (int r = 0; ok && r < k; ++r) {
+			std::vector<int>& poly = pg.of[runs[r].plane];
+			for (size_t e = 0; e < runs[r].count; ++e) poly.push_back(c[(runs[r].first + e) % c.size()].from);
+			poly.push_back(c[(runs[r].first + runs[r].count - 1) % c.size()].to);
+			std::vector<std::pair<int, int>> fan;   // (the nearer other vertex's offset after r, corner)
+			for (size_t i = 0; i < tri.size(); ++i) {
+				const std::array<int, 3>& t = tri[i];
+				if (t[0] != r && t[1] != r && t[2] != r) continue;
+				int near = k;
+				for (int x : t)
+					if (x != r) near = std::min(near, (x - r + k) % k);
+				fan.emplace_back(near, -1 - (int) i);
+			}
+			std::sort(fan.begin(), fan.end());
+			for (const auto& [near, corner] : fan) poly.push_back(corner);
+		}
+		std::optional<PlanePatch> p = ok ? patch_of(m, c, planes, pg) : std::nullopt;
+		if (!p) continue;
+		double area = 0;
+		const auto at = [&](int v) { return v >= 0 ? m.V[v] : p->corners[-1 - v]; };
+		for (const Tri& f : p->faces) area += (at(f[1]) - at(f[0])).cross(at(f[2]) - at(f[0])).norm();
+		if (!best || area < least) best = std::move(p), least = area;
+	}
+	return best;
+}
+
 } // namespace
 
 std::optional<PlanePatch> plane_patch(const TriMesh& m, const std::vector<RimEdge>& rim, double eps)
@@ -243,17 +325,10 @@ std::optional<PlanePatch> plane_patch(const TriMesh& m, const std::vector<RimEdg
 	if (c.size() < 3 || !stretches(m, c, eps, runs, planes)) return std::nullopt;
 	Vec3 lo = m.V[c[0].from], hi = lo;
 	for (const RimEdge& e : c) lo = lo.cwiseMin(m.V[e.from]), hi = hi.cwiseMax(m.V[e.from]);
+	if (runs.size() >= 3 && planes.size() == runs.size()) return corner_tree(m, c, runs, planes, lo, hi);
 	Polygons pg;
 	if (!polygons(c, runs, planes, lo, hi, pg)) return std::nullopt;
-	PlanePatch out;
-	out.corners = pg.corners;
-	for (size_t p = 0; p < planes.size(); ++p) {
-		std::vector<Vec3> at;
-		for (int v : pg.of[p]) at.push_back(v >= 0 ? m.V[v] : pg.corners[-1 - v]);
-		if (!triangulate(pg.of[p], at, planes[p], out.faces)) return std::nullopt;
-	}
-	if (!closes(c, out.faces)) return std::nullopt;
-	return out;
+	return patch_of(m, c, planes, pg);
 }
 
 } // namespace acd

@@ -26,10 +26,14 @@ struct PlanePatch
 
 // The patch of the hole whose border edges are `rim` (any order); `eps`: the distance within which a
 // point lies on a plane. nullopt unless the rim is one cycle that runs in stretches of two or more edges,
-// each on the plane of its faces, and between two stretches on one plane the rim visits either the same
-// other plane at both ends (the patch follows their crease) or two planes only (it turns at the corner
-// the three make, which must lie near the hole); and unless each plane's patch is a simple polygon that
-// closes with the others along every edge. The patch is not checked against the surface beyond its rim.
+// each on the plane of its faces, and the planes meet inside the hole in one of these ways:
+//  - every stretch on a plane of its own (up to 8): the planes meet at corners, three at a time, as a
+//    triangulation of the polygon whose vertices are the stretches says; of all such ways, the one whose
+//    corners lie near the hole and whose polygons are valid with the least area;
+//  - else, between two stretches on one plane the rim visits either the same other plane at both ends (the
+//    patch follows their crease) or two planes only (it turns at the corner the three make, near the hole);
+// and unless each plane's patch is a simple polygon and they close the hole together. The patch is not
+// checked against the surface beyond its rim.
 std::optional<PlanePatch> plane_patch(const TriMesh& m, const std::vector<RimEdge>& rim, double eps);
 
 } // namespace acd
