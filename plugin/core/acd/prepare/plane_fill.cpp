@@ -123,6 +123,20 @@ std::optional<Vec3> corner_of(const Plane& a, const Plane& b, const Plane& c)
 	return Vec3(A.partialPivLu().solve(Vec3(a.d, b.d, c.d)));
 }
 
+// Near the hole: within 1.5 times the rim's radius of its centroid (the same in any pose).
+struct Ball
+{
+	Vec3   centre = Vec3::Zero();
+	double radius = 0;
+	Ball(const TriMesh& m, const std::vector<RimEdge>& c)
+	{
+		for (const RimEdge& e : c) centre += m.V[e.from];
+		centre /= (double) c.size();
+		for (const RimEdge& e : c) radius = std::max(radius, (m.V[e.from] - centre).norm());
+	}
+	bool holds(const Vec3& q) const { return (q - centre).norm() <= 1.5 * radius; }
+};
+
 // The patch's polygons being built: each plane's vertices in rim order, the corners made so far.
 struct Polygons
 {
@@ -135,11 +149,10 @@ struct Polygons
 // crease with the plane the rim turns to there (the same at both ends), or through the corner of the
 // plane with the two planes the rim visits in between; false where neither holds.
 bool polygons(const std::vector<RimEdge>& c, const std::vector<Run>& runs, const std::vector<Plane>& planes,
-              const Vec3& lo, const Vec3& hi, Polygons& out)
+              const Ball& near, Polygons& out)
 {
 	const size_t R = runs.size();
 	out.of.assign(planes.size(), {});
-	const Vec3 margin = Vec3::Constant(0.25 * (hi - lo).norm());
 	for (size_t r = 0; r < R; ++r) {
 		const int P = runs[r].plane;
 		std::vector<int>& poly = out.of[P];
@@ -160,7 +173,7 @@ bool polygons(const std::vector<RimEdge>& c, const std::vector<Run>& runs, const
 		auto it = out.corner_id.find(key);
 		if (it == out.corner_id.end()) {
 			const std::optional<Vec3> q = corner_of(planes[P], planes[X], planes[Y]);
-			if (!q || (q->array() < (lo - margin).array()).any() || (q->array() > (hi + margin).array()).any()) return false;
+			if (!q || !near.holds(*q)) return false;
 			it = out.corner_id.emplace(key, -1 - (int) out.corners.size()).first;
 			out.corners.push_back(*q);
 		}
@@ -273,11 +286,10 @@ std::vector<Triangles> triangulations(int lo, int hi)
 // three planes meet; a diagonal, the crease of its two). Each stretch's polygon follows it, then the
 // corners of its triangles in turn about it. The way that makes valid polygons of least area is kept.
 std::optional<PlanePatch> corner_tree(const TriMesh& m, const std::vector<RimEdge>& c, const std::vector<Run>& runs,
-                                      const std::vector<Plane>& planes, const Vec3& lo, const Vec3& hi)
+                                      const std::vector<Plane>& planes, const Ball& near)
 {
 	const int k = (int) runs.size();
 	if (k > kMostPlanes) return std::nullopt;
-	const Vec3                margin = Vec3::Constant(0.25 * (hi - lo).norm());
 	std::optional<PlanePatch> best;
 	double                    least = 0;
 	for (const Triangles& tri : triangulations(0, k - 1)) {
@@ -286,7 +298,7 @@ std::optional<PlanePatch> corner_tree(const TriMesh& m, const std::vector<RimEdg
 		bool ok = true;
 		for (const std::array<int, 3>& t : tri) {
 			const std::optional<Vec3> q = corner_of(planes[runs[t[0]].plane], planes[runs[t[1]].plane], planes[runs[t[2]].plane]);
-			ok = ok && q && (q->array() >= (lo - margin).array()).all() && (q->array() <= (hi + margin).array()).all();
+			ok = ok && q && near.holds(*q);
 			if (ok) pg.corners.push_back(*q);
 		}
 		for (int r = 0; ok && r < k; ++r) {
@@ -323,11 +335,10 @@ std::optional<PlanePatch> plane_patch(const TriMesh& m, const std::vector<RimEdg
 	std::vector<Run>     runs;
 	std::vector<Plane>   planes;
 	if (c.size() < 3 || !stretches(m, c, eps, runs, planes)) return std::nullopt;
-	Vec3 lo = m.V[c[0].from], hi = lo;
-	for (const RimEdge& e : c) lo = lo.cwiseMin(m.V[e.from]), hi = hi.cwiseMax(m.V[e.from]);
-	if (runs.size() >= 3 && planes.size() == runs.size()) return corner_tree(m, c, runs, planes, lo, hi);
+	const Ball near(m, c);
+	if (runs.size() >= 3 && planes.size() == runs.size()) return corner_tree(m, c, runs, planes, near);
 	Polygons pg;
-	if (!polygons(c, runs, planes, lo, hi, pg)) return std::nullopt;
+	if (!polygons(c, runs, planes, near, pg)) return std::nullopt;
 	return patch_of(m, c, planes, pg);
 }
 
