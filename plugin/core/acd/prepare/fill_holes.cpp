@@ -240,16 +240,16 @@ std::vector<RimEdge> rim_edges(const TriMesh& m, const VertexFaces& vf, const Ri
 // Whether the patch crosses itself or the faces about the hole.
 bool crosses(const TriMesh& m, const std::vector<int>& faces, const Patch& p)
 {
-	std::map<int, size_t>                    local;
-	std::vector<Point>                       pts;
-	std::vector<std::array<size_t, 3>>       soup;
-	const auto                               at = [&](int v) {
-        const auto it = local.emplace(v, pts.size());
-        if (it.second) {
-            const Vec3& q = v >= 0 ? m.V[v] : p.V[-1 - v];
-            pts.emplace_back(q.x(), q.y(), q.z());
-        }
-        return it.first->second;
+	std::map<int, size_t>              local;
+	std::vector<Point>                 pts;
+	std::vector<std::array<size_t, 3>> soup;
+	const auto at = [&](int v) {
+		const auto it = local.emplace(v, pts.size());
+		if (it.second) {
+			const Vec3& q = v >= 0 ? m.V[v] : p.V[-1 - v];
+			pts.emplace_back(q.x(), q.y(), q.z());
+		}
+		return it.first->second;
 	};
 	for (int f : faces) soup.push_back({at(m.F[f][0]), at(m.F[f][1]), at(m.F[f][2])});
 	for (const Tri& t : p.F) soup.push_back({at(t[0]), at(t[1]), at(t[2])});

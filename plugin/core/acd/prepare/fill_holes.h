@@ -1,8 +1,9 @@
-// Openings closed by CGAL's hole filling: each hole of an edge-manifold surface triangulated, refined to
-// the density of its rim and faired, so that the patch continues the surface's curvature across the
-// opening. A hole punched into a curved surface then closes along that surface instead of as a flat
-// film, and the rest of the input is kept exactly as it is. Each hole is filled in a few rings of faces
-// about it, so the cost follows the holes, not the surface.
+// Openings closed in the surface itself, the rest of the input kept exactly as it is. A hole whose rim
+// runs on a few planes (a CAD export missing faces) is closed on those planes (plane_fill.h), so a hole
+// across an edge or a corner closes on it. Any other is closed by CGAL's hole filling: triangulated,
+// refined to the density of its rim and faired, so that the patch continues the surface's curvature and
+// a hole punched into a curved surface closes along it instead of as a flat film. Each hole is filled
+// in a few rings of faces about it, so the cost follows the holes, not the surface.
 #pragma once
 
 #include "acd/mesh/mesh.h"
