@@ -20,8 +20,9 @@ const std::vector<PreprocessingMode>& preprocessing_modes()
 		 "about wrap_offset outside the input)"},
 		{Preprocessing::Auto, "auto",
 		 "as given when it is a valid solid, else welded (vertices within 1e-5 of its size) if that makes it one, "
-		 "else, for a surface with holes that is not an open shell, its holes filled and faired (CGAL's hole filling: "
-		 "the patches continue the surface's curvature) if that makes a solid that does not cross itself, "
+		 "else, for a surface with holes that is not an open shell, its holes filled (a hole whose rim runs on a few "
+		 "planes, as in a CAD export missing faces, on those planes; any other by CGAL's hole filling, faired: the "
+		 "patches continue the surface's curvature) if that makes a solid that does not cross itself, "
 		 "else alpha wrapped; a wrap that slipped inside through wider holes (a hollow skin) is made again with "
 		 "caps across the openings where the input's generalized winding number is 1/2, so that they close along "
 		 "the surface; an open shell (a sheet, a bowl, a helmet) keeps its skin. A solid that crosses itself is "

@@ -190,7 +190,7 @@ TriMesh faces_from(const TriMesh& m, size_t first)
 	return out;
 }
 
-// The weld with its holes filled and faired, kept when that is a valid solid that does not cross itself.
+// The weld with its holes filled (fill_holes), kept when that is a valid solid that does not cross itself.
 // Its distance to the input is the patches': the rest is the input's own faces.
 bool filled_solid(const TriMesh& welded, WrapSolidResult& r, InputTree& t)
 {

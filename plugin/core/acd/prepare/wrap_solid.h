@@ -20,7 +20,7 @@ struct WrapSolidResult
 	double      alpha   = 0;        // the alpha of the wrap kept (model units)
 	double      inside  = 1;        // share of the input's interior samples inside the wrap kept
 	int         tries   = 0;        // wraps computed (the last one is not always the one kept)
-	int         filled  = 0;        // holes filled and faired in the input itself (not wrapped)
+	int         filled  = 0;        // holes filled in the input itself (not wrapped)
 	int         on_planes = 0;      // of them, closed on the planes their rims run on (plane_fill.h)
 	bool        capped  = false;    // the openings were closed along the winding number's level set
 	bool        skin    = false;    // the input encloses no solid: the wrap is a thin skin about it
@@ -50,7 +50,7 @@ std::vector<double> winding_numbers(const TriMesh& surface, const std::vector<Ve
 // Should a capped wrap not hold the interior, wraps with 2 alpha, 4 alpha, ... up to max_alpha are
 // tried. The input is returned as given when make_solid accepts it, and welded (1e-5 of its size) when
 // that is all it takes. Before any wrap, an input with openings that is no open shell has its holes
-// filled and faired (fill_holes, with `fill`): kept, not wrapped, when that makes a valid solid that does
+// filled (fill_holes, with `fill`): kept, not wrapped, when that makes a valid solid that does
 // not cross itself, for it is the input itself with patches that continue its surface.
 WrapSolidResult wrap_solid(const TriMesh& input, double alpha, double offset, double max_alpha,
                            double min_inside = 0.5, double max_cap_share = 0.25, bool fill = true);
