@@ -65,6 +65,47 @@ TEST_CASE("proxy search: the proxy's cuts part the solid exactly, every part cer
 	CHECK(D.parts().size() <= exact.parts().size() + 1);
 }
 
+TEST_CASE("proxy search: a solid above the bar but under twice the proxy's faces is searched on a copy of half its faces")
+{
+	const TriMesh m = fine_u();
+	const Solid   s = make_solid(m);
+	const int     n = (int) s.mesh.F.size();
+	ProxySettings ps;
+	ps.above = n / 4, ps.faces = n;   // the first proxy would have as many faces as the solid
+	const Decomposition D = search(s, options(0.02 * extent(m.V)), ps);
+	CHECK(D.proxy_searches == 1);
+	CHECK(D.proxy_faces > 0);
+	CHECK(D.proxy_faces <= n / 2);
+	CHECK(D.tau_convex());
+	double total = 0;
+	for (int p : D.parts()) total += volume(D.nodes[p].mesh);
+	CHECK_NEAR(total / volume(m), 1.0, 1e-9);
+}
+
+TEST_CASE("proxy search: cut_search=thorough grows both pick rules' trees on the proxy and keeps the better")
+{
+	// A plus-shaped slab: on its proxy the two rules' trees differ, and the thorough search leaves
+	// fewer parts than the first rule's alone.
+	TriMesh m = shapes::extrude(shapes::plus_shape(), -0.3, 0.3);
+	for (int round = 0; round < 4; ++round) m = shapes::subdivided(m);
+	const Solid   s = make_solid(m);
+	ProxySettings ps;
+	ps.above = 2000, ps.faces = 1000;
+	DecomposeOptions o = options(0.02 * extent(m.V));
+	o.cut_search       = CutSearch::Fast;
+	const Decomposition fast = search(s, o, ps);
+	o.cut_search             = CutSearch::Thorough;
+	const Decomposition both = search(s, o, ps);
+	CHECK(fast.proxy_searches == 1);
+	CHECK(both.proxy_searches == 1);
+	CHECK(both.tau_convex());
+	CHECK(both.parts().size() < fast.parts().size());
+	CHECK(both.pick_rule == PickRule::PartsNeeded);
+	double total = 0;
+	for (int p : both.parts()) total += volume(both.nodes[p].mesh);
+	CHECK_NEAR(total / volume(m), 1.0, 1e-9);
+}
+
 TEST_CASE("proxy search: a proxy too coarse for tau has its failing parts searched again, and the result is the same on any thread count")
 {
 	const TriMesh m = shapes::torus(1, 0.4, 120, 60);

@@ -679,9 +679,6 @@ MeasuredPtr measure_node(Node& n, bool keep_cavities, double tau)
 	return ms;
 }
 
-namespace {
-
-// Certified first, then the fewer parts, then the nearer hulls (within rounding: a tie keeps the first).
 bool better(const Decomposition& a, const Decomposition& b)
 {
 	if (a.tau_convex() != b.tau_convex()) return a.tau_convex();
@@ -689,10 +686,13 @@ bool better(const Decomposition& a, const Decomposition& b)
 	return a.max_hull_distance() < b.max_hull_distance() - 1e-9;
 }
 
+namespace {
+
 // The search under each pick rule (cut_search = thorough; fast: the first alone), the better kept. A
 // greedy search's choices compound, so which rule leaves fewer parts shows only at the end; the
 // second search runs in the time the first left. A solid large enough to be searched on a proxy is
-// searched once: there the time goes to certifying its parts, which a second search would double.
+// searched once here: its proxy search grows both trees on the proxy and certifies only the better on
+// the solid (proxy_search.h), where a second search would double the certificates.
 Decomposition search_rules(const Solid& unit, const DecomposeOptions& opt)
 {
 	const auto start = std::chrono::steady_clock::now();

@@ -109,6 +109,10 @@ inline bool certified(const Node& n, double tau)
 
 Decomposition decompose(const Solid& solid, const DecomposeOptions& options);
 
+// Of two searches of one solid, whether `a` is the better: certified first, then the fewer parts, then
+// the nearer hulls (within rounding: a tie keeps the first).
+bool better(const Decomposition& a, const Decomposition& b);
+
 // n's references to other nodes (parent, children, merged part, merged leaves) renumbered: old id k
 // becomes id[k] (-1 stays -1).
 void renumber(Node& n, const std::vector<int>& id);

@@ -1,6 +1,7 @@
 // The search on a proxy (proxy_search.h): decimate, cut the proxy, replay its cuts on the solid, certify
 // every part on the solid, search the parts that fail again on a finer proxy or as they are.
 #include "acd/decompose3/proxy_search.h"
+#include "acd/decompose3/measure_memo.h"
 #include "acd/decompose3/merge.h"
 #include "acd/mesh/decimate.h"
 #include "acd/mesh/measures.h"
@@ -137,25 +138,17 @@ private:
 	{
 		std::optional<Proxy> px;
 		for (; level < ps.levels && !px; ++level) {
-			const int faces = ps.faces << (2 * level);
-			if ((int) D.nodes[at].mesh.F.size() <= std::max(ps.above, 2 * faces)) break;
+			const int faces = proxy_faces(at, level);
+			if (faces == 0) break;
 			report("Simplifying the mesh for the search");
 			px = make_proxy(D.nodes[at].mesh, faces, ps.error * o.tau, ps.widest * o.tau);
 		}
 		if (!px) return search_as_is(at, merge);
 		if (D.proxy_searches++ == 0) D.proxy_faces = (int) px->solid.mesh.F.size(), D.proxy_distance = px->distance;
-		DecomposeOptions po   = o;
-		po.tau                = std::max(o.tau - px->distance, 0.5 * o.tau);   // so that the solid's parts rarely fail where the proxy's pass
-		po.time_limit_seconds = left();
-		Decomposition P;
-		try {
-			P = cut_tree(px->solid, po);
-		}
-		catch (const Error& e) {   // a cut opened a proxy's part (a fold decimation made): search the solid
-			if (e.code != Error::OpenPart) throw;
-			return search_as_is(at, merge);
-		}
-		if (merge) merge_parts(P, o.tau, o.progress, left(), memo);
+		std::optional<Decomposition> found = proxy_tree(*px, merge);
+		if (!found) return search_as_is(at, merge);
+		Decomposition& P = *found;
+		if (D.proxy_searches == 1) D.pick_rule = P.pick_rule;   // the rule of the solid's own search
 		absorb(P);
 		D.merges -= P.merges;   // the proxy's merges count as unite_parts makes them on the solid
 		std::vector<int>   leaves;
@@ -185,10 +178,54 @@ private:
 		if (!D.time_limit_reached) search_again(again, failed, level, merge);
 	}
 
-	// True if leaf `at` is searched as it is from proxy level `level` on (search_node's first test).
-	bool as_is_from(int at, int level) const
+	// The proxy's cut tree (and merge): under cut_search=thorough one per pick rule, the better kept, as
+	// decompose() does on a small solid (the proxy makes the second search cheap, and only the tree
+	// kept is replayed and certified on the solid). None if a cut opened a proxy's part (a fold
+	// decimation made): the solid is then searched as it is.
+	std::optional<Decomposition> proxy_tree(const Proxy& px, bool merge) const
 	{
-		return level >= ps.levels || (int) D.nodes[at].mesh.F.size() <= std::max(ps.above, 2 * (ps.faces << (2 * level)));
+		DecomposeOptions po = o;
+		po.tau              = std::max(o.tau - px.distance, 0.5 * o.tau);   // so that the solid's parts rarely fail where the proxy's pass
+		const bool  both    = o.cut_search == CutSearch::Thorough;
+		MergeMemo   unions;     // the trees share their first cuts, and their merges many unions
+		MeasureMemo parts;      // and the parts their planes make at the nodes they share
+		std::optional<Decomposition> kept;
+		for (PickRule rule : {PickRule::WorseHalf, PickRule::PartsNeeded}) {
+			if (rule == PickRule::PartsNeeded && (!both || (kept && kept->time_limit_reached))) break;
+			po.pick_rule          = rule;
+			po.time_limit_seconds = left();
+			if (both && o.progress) {
+				const int from = rule == PickRule::WorseHalf ? 0 : 50;
+				po.progress    = [&, from](int pct, const char* msg) { return o.progress(from + pct / 2, msg); };
+			}
+			Decomposition P;
+			try {
+				P = cut_tree(px.solid, po, nullptr, both ? &parts : nullptr);
+			}
+			catch (const Error& e) {
+				if (e.code != Error::OpenPart) throw;
+				return std::nullopt;
+			}
+			if (merge) merge_parts(P, o.tau, po.progress, left(), both ? &unions : memo);
+			P.pick_rule = rule;
+			if (!kept || better(P, *kept)) kept = std::move(P);
+		}
+		return kept;
+	}
+
+	// True if leaf `at` is searched as it is from proxy level `level` on (search_node's first test).
+	bool as_is_from(int at, int level) const { return proxy_faces(at, level) == 0; }
+
+	// The faces of leaf `at`'s proxy at `level`, 0 where it is searched as it is: above ps.above, the
+	// first proxy has ps.faces but at most half the leaf's, each finer one four times as many while
+	// that is under half the leaf's.
+	int proxy_faces(int at, int level) const
+	{
+		const int n = (int) D.nodes[at].mesh.F.size();
+		if (level >= ps.levels || n <= ps.above) return 0;
+		const int faces = ps.faces << (2 * level);
+		if (level == 0) return std::min(faces, n / 2);
+		return 2 * faces < n ? faces : 0;
 	}
 
 	// The leaves that failed, searched again in leaf order. Those searched as they are go all at once
