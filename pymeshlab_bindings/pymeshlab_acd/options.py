@@ -34,7 +34,8 @@ HELP = dict(
                 "tree's leaves as they are)",
     cut_search="thorough: grow the cut tree twice, cuts picked by the worse part's concavity (the paper) and by "
                "the parts both parts are estimated to need, and keep the one with fewer parts (about twice the "
-               "time; a mesh of over 100,000 faces is searched once); fast: the first alone",
+               "time; a mesh of over 100,000 faces grows both on its simplified copy and certifies the better); fast: "
+               "the first alone",
     max_hull_vertices="at most this many vertices per collision hull, on top of --engine's limits (0: none); a "
                       "reduced hull still contains its part",
     engine="make every collision hull meet this physics engine's limits (PhysX 255 vertices/255 polygons, its GPU "
