@@ -309,12 +309,14 @@ private:
 	}
 
 	// A proxy's merged part on the solid: its leaves united whole if that passes, else in pieces, two
-	// pieces at a time (in path order) while their union passes; the merged parts made.
+	// pieces at a time (in path order) while their union passes; the merged parts made. A union refused
+	// once is not tried again after another grows, nor one of pieces that do not touch (two shells).
 	std::vector<Node> united_pieces(const std::vector<int>& leaves) const
 	{
 		if (std::optional<Node> whole = united(leaves)) return {std::move(*whole)};
 		std::vector<std::vector<int>>    pieces;
 		std::vector<std::optional<Node>> made;
+		std::set<std::vector<int>>       refused;
 		for (int l : leaves) pieces.push_back({l}), made.emplace_back();
 		for (bool grown = leaves.size() > 2; grown;) {
 			grown = false;
@@ -324,7 +326,10 @@ private:
 					std::vector<int> both;
 					std::merge(pieces[i].begin(), pieces[i].end(), pieces[j].begin(), pieces[j].end(), std::back_inserter(both),
 					           [&](int a, int b) { return D.nodes[a].path < D.nodes[b].path; });
-					if (std::optional<Node> n = united(both)) {
+					if (refused.count(both) || !touch(pieces[i], pieces[j])) continue;
+					std::optional<Node> n = united(both);
+					if (!n) refused.insert(std::move(both));
+					else {
 						pieces[i] = std::move(both), made[i] = std::move(n);
 						pieces.erase(pieces.begin() + j), made.erase(made.begin() + j);
 						grown = true;
@@ -335,6 +340,23 @@ private:
 		for (std::optional<Node>& n : made)
 			if (n) out.push_back(std::move(*n));
 		return out;
+	}
+
+	// Whether some leaf of `a` and some leaf of `b` both reach the cut between them: glued, pieces that
+	// do not stay two shells.
+	bool touch(const std::vector<int>& a, const std::vector<int>& b) const
+	{
+		const double eps     = 1e-9 * extent(D.nodes[0].mesh.V);
+		const auto   reaches = [&](int leaf, const Plane& pl) {
+            const std::vector<Vec3>& V = D.nodes[leaf].mesh.V;
+            return std::any_of(V.begin(), V.end(), [&](const Vec3& p) { return std::abs(pl.eval(p)) <= eps; });
+		};
+		for (int x : a)
+			for (int y : b) {
+				const Node& c = D.nodes[between(x, y)];
+				if (c.has_plane && reaches(x, c.plane) && reaches(y, c.plane)) return true;
+			}
+		return false;
 	}
 
 	// The cut between two leaves: their deepest common node.
