@@ -342,8 +342,8 @@ private:
 		return out;
 	}
 
-	// Whether some leaf of `a` and some leaf of `b` both reach the cut between them: glued, pieces that
-	// do not stay two shells.
+	// Whether some leaf of `a` and some leaf of `b` both reach the cut between them. Glue joins leaves
+	// only across that cut, so pieces that do not touch stay two shells.
 	bool touch(const std::vector<int>& a, const std::vector<int>& b) const
 	{
 		const double eps     = 1e-9 * extent(D.nodes[0].mesh.V);
