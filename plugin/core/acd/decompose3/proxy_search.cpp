@@ -96,6 +96,7 @@ public:
 	{
 		if (o.max_parts > 0 || (int) solid.mesh.F.size() <= ps.above) return cut_and_merge(solid, o.merge_parts, o);
 		D.tau = o.tau;
+		eps   = 1e-9 * extent(solid.mesh.V);
 		Node root;
 		root.path = "0";
 		root.mesh = solid.mesh;
@@ -115,6 +116,7 @@ private:
 	Decomposition                               D;
 	std::vector<std::string>                    retried;   // the paths of the leaves searched again
 	std::set<std::string>                       as_is;     // those of them searched as they are
+	double                                      eps = 0;   // the width of a cut plane on the solid
 
 	// The time limit's rest (0: none).
 	double left() const
@@ -346,8 +348,7 @@ private:
 	// only across that cut, so pieces that do not touch stay two shells.
 	bool touch(const std::vector<int>& a, const std::vector<int>& b) const
 	{
-		const double eps     = 1e-9 * extent(D.nodes[0].mesh.V);
-		const auto   reaches = [&](int leaf, const Plane& pl) {
+		const auto reaches = [&](int leaf, const Plane& pl) {
             const std::vector<Vec3>& V = D.nodes[leaf].mesh.V;
             return std::any_of(V.begin(), V.end(), [&](const Vec3& p) { return std::abs(pl.eval(p)) <= eps; });
 		};
@@ -374,7 +375,6 @@ private:
 	// cavity holding their volume, as a merged part's node.
 	std::optional<Node> united(const std::vector<int>& leaves) const
 	{
-		const double eps = 1e-9 * extent(D.nodes[0].mesh.V);
 		TriMesh      u   = D.nodes[leaves[0]].mesh;
 		double       volume = D.nodes[leaves[0]].volume;
 		std::vector<Plane> cuts;   // every cut between the leaves

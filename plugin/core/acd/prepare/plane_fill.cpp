@@ -145,6 +145,13 @@ struct Polygons
 	std::map<std::array<int, 3>, int> corner_id;   // the planes that meet there, sorted
 };
 
+// A stretch's rim vertices appended to its plane's polygon: each edge's start, then the last one's end.
+void append_stretch(const std::vector<RimEdge>& c, const Run& run, std::vector<int>& poly)
+{
+	for (size_t e = 0; e < run.count; ++e) poly.push_back(c[(run.first + e) % c.size()].from);
+	poly.push_back(c[(run.first + run.count - 1) % c.size()].to);
+}
+
 // Each plane's polygon: its stretches in rim order, each joined to the next one on the plane along the
 // crease with the plane the rim turns to there (the same at both ends), or through the corner of the
 // plane with the two planes the rim visits in between; false where neither holds.
@@ -156,8 +163,7 @@ bool polygons(const std::vector<RimEdge>& c, const std::vector<Run>& runs, const
 	for (size_t r = 0; r < R; ++r) {
 		const int P = runs[r].plane;
 		std::vector<int>& poly = out.of[P];
-		for (size_t k = 0; k < runs[r].count; ++k) poly.push_back(c[(runs[r].first + k) % c.size()].from);
-		poly.push_back(c[(runs[r].first + runs[r].count - 1) % c.size()].to);
+		append_stretch(c, runs[r], poly);
 		std::set<int> between;
 		size_t        s = (r + 1) % R;
 		for (; runs[s].plane != P; s = (s + 1) % R) between.insert(runs[s].plane);
@@ -303,19 +309,18 @@ std::optional<PlanePatch> corner_tree(const TriMesh& m, const std::vector<RimEdg
 		}
 		for (int r = 0; ok && r < k; ++r) {
 			std::vector<int>& poly = pg.of[runs[r].plane];
-			for (size_t e = 0; e < runs[r].count; ++e) poly.push_back(c[(runs[r].first + e) % c.size()].from);
-			poly.push_back(c[(runs[r].first + runs[r].count - 1) % c.size()].to);
+			append_stretch(c, runs[r], poly);
 			std::vector<std::pair<int, int>> fan;   // (the nearer other vertex's offset after r, corner)
 			for (size_t i = 0; i < tri.size(); ++i) {
 				const std::array<int, 3>& t = tri[i];
 				if (t[0] != r && t[1] != r && t[2] != r) continue;
-				int near = k;
+				int offset = k;
 				for (int x : t)
-					if (x != r) near = std::min(near, (x - r + k) % k);
-				fan.emplace_back(near, -1 - (int) i);
+					if (x != r) offset = std::min(offset, (x - r + k) % k);
+				fan.emplace_back(offset, -1 - (int) i);
 			}
 			std::sort(fan.begin(), fan.end());
-			for (const auto& [near, corner] : fan) poly.push_back(corner);
+			for (const auto& [offset, corner] : fan) poly.push_back(corner);
 		}
 		std::optional<PlanePatch> p = ok ? patch_of(m, c, planes, pg) : std::nullopt;
 		if (!p) continue;
