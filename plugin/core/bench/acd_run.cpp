@@ -95,6 +95,9 @@ int main(int argc, char** argv)
 			            d.proxy_distance / d.tau, d.proxy_searches, d.proxy_retries);
 		if (std::getenv("ACD_RUN_TREE")) print_cuts(d);
 		diagnose(d);
+		if (const char* node = std::getenv("ACD_RUN_NODE"))   // one node of the tree, by its path
+			for (const acd::Node& n : d.nodes)
+				if (n.path == node) acd::bench::write_obj_objects(std::string(node) + ".obj", {n.mesh});
 		if (const char* dump = std::getenv("ACD_RUN_PARTS"))   // every part, one object each
 			acd::bench::write_obj_objects(dump, [&] {
 				std::vector<acd::TriMesh> parts;

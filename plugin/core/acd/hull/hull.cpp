@@ -78,13 +78,48 @@ SMesh cgal_hull(const std::vector<Vec3>& input, std::unordered_map<Point, int, B
 	return sm;
 }
 
+// A facet grows from its largest triangle, across edges, over the proper triangles whose corners lie
+// within noise of that first triangle's plane. Judged against one plane, not neighbour against
+// neighbour: a small triangle's normal is known only to noise / its height, so pairwise it would join
+// planes that differ by far more than rounding (a CAD face flat to a few ulps of single precision is a
+// fan of such planes), and whether such a triangle exists at all hangs on rounding.
+void grow_facets(const std::vector<Vec3>& points, const std::vector<Tri>& triangles,
+                 const std::vector<std::vector<std::pair<double, int>>>& across, const std::vector<char>& proper,
+                 const std::vector<Vec3>& normal, const std::vector<double>& height, double noise, DisjointSets& sets)
+{
+	std::vector<int> seeds;
+	for (int t = 0; t < (int) triangles.size(); ++t)
+		if (proper[t]) seeds.push_back(t);
+	const auto twice_area = [&](int t) { return height[t] * across[t][0].first; };
+	std::stable_sort(seeds.begin(), seeds.end(), [&](int a, int b) { return twice_area(a) > twice_area(b); });
+	std::vector<char> taken(triangles.size(), 0);
+	std::vector<int>  todo;
+	for (int seed : seeds) {
+		if (taken[seed]) continue;
+		taken[seed]     = 1;
+		const Vec3   n  = normal[seed];
+		const double d  = n.dot(points[triangles[seed][0]]);
+		auto         on = [&](int g) {
+			for (int v : triangles[g])
+				if (std::abs(n.dot(points[v]) - d) > noise) return false;
+			return true;
+		};
+		todo.assign(1, seed);
+		while (!todo.empty()) {
+			const int t = todo.back();
+			todo.pop_back();
+			for (const auto& [len, g] : across[t])
+				if (proper[g] && !taken[g] && on(g)) taken[g] = 1, sets.unite(g, seed), todo.push_back(g);
+		}
+	}
+}
+
 // Coplanar neighbouring triangles merged into groups (union-find roots per triangle). "Coplanar" to
 // rounding, not exactly: a cut's cap is planar only up to the rounding of its crossing points, and
 // which way that rounding falls depends on the pose, so an exact test would split the same cap into
-// different facets (and spurious bridges) when the object is rotated. A triangle's normal is known to
-// about noise / height, so two normals that agree within their two uncertainties are the same plane
-// (noise: 1e-12 of the extent, generous for coordinates of unit size). `across[t]`: (edge length,
-// neighbouring triangle) over t's edges.
+// different facets (and spurious bridges) when the object is rotated. A facet takes the triangles
+// whose corners lie within noise of its largest triangle's plane (noise: 1e-12 of the extent, generous
+// for coordinates of unit size). `across[t]`: (edge length, neighbouring triangle) over t's edges.
 std::vector<int> coplanar_groups(const std::vector<Vec3>& points, const std::vector<Tri>& triangles,
                                  std::vector<std::vector<std::pair<double, int>>>& across)
 {
@@ -107,12 +142,7 @@ std::vector<int> coplanar_groups(const std::vector<Vec3>& points, const std::vec
 		proper[t]    = height[t] > 1e-10 * reach;
 	}
 	DisjointSets sets(triangles.size());
-	for (int t = 0; t < (int) triangles.size(); ++t)
-		for (const auto& [len, g] : across[t]) {
-			if (g < t || !proper[t] || !proper[g]) continue;
-			const double angle = std::atan2(normal[t].cross(normal[g]).norm(), normal[t].dot(normal[g]));
-			if (angle <= noise / height[t] + noise / height[g]) sets.unite(t, g);
-		}
+	grow_facets(points, triangles, across, proper, normal, height, noise, sets);
 	for (bool changed = true; changed;) {
 		changed = false;
 		for (int t = 0; t < (int) triangles.size(); ++t) {
