@@ -2,9 +2,7 @@
 #include "acd/solid/solid.h"
 #include "shapes.h"
 #include "check.h"
-
-#include <fstream>
-#include <string>
+#include "bench/obj_io.h"
 
 using namespace acd;
 
@@ -67,31 +65,15 @@ TEST_CASE("hull facets bound the hull despite slivers")
 	CHECK(worst < 1e-9);
 }
 
-namespace {
-
-TriMesh read_part(const std::string& name)
+TEST_CASE("a CAD part flat only to single precision measures the same when its coordinates are rounded again")
 {
-	TriMesh       part;
-	std::ifstream in(std::string(ACD_TEST_DATA) + "/" + name);
-	for (std::string tag; in >> tag;) {
-		if (tag == "v") {
-			Vec3 p;
-			in >> p.x() >> p.y() >> p.z();
-			part.V.push_back(p);
-		}
-		else if (tag == "f") {
-			Tri t;
-			in >> t[0] >> t[1] >> t[2];
-			part.F.push_back({t[0] - 1, t[1] - 1, t[2] - 1});
-		}
-	}
-	return part;
-}
-
-// The part and its points turned and turned back (they move by about 1e-15): the hull's facets, the
-// bridges, the pockets' patches and the concavity must not change.
-void same_when_rounded_again(const TriMesh& part)
-{
+	// A part cut from a robot link exported in single precision: its -x side is a fan of hull facets
+	// tilted by about 1e-6 against each other. Turned and turned back, its points move by about 1e-15,
+	// which adds hull vertices on that side and small hull triangles between the tilted planes. A facet
+	// grows against its first triangle's plane, not from neighbour to neighbour, or those small
+	// triangles would join planes that rounding alone does not, and the bridges and concavity change.
+	const TriMesh part = bench::read_obj(ACD_TEST_DATA "/cad_part_flat_to_float.obj");
+	REQUIRE(part.V.size() == 910);
 	const Eigen::Matrix3d R = (Eigen::AngleAxisd(0.9, Vec3(0.3, -1, 2).normalized())).toRotationMatrix();
 	TriMesh again = part;
 	for (Vec3& p : again.V) p = R.transpose() * (R * p);
@@ -111,17 +93,4 @@ void same_when_rounded_again(const TriMesh& part)
 	// Measured here: the most concave notch lies at least that far inside its bridge's plane.
 	const Plane& pa = ha.facet_plane[ra.max_bridge];
 	CHECK(ra.max_concavity >= pa.d - pa.n.dot(a.mesh.V[ra.max_vertex]) - 1e-12);
-}
-
-} // namespace
-
-TEST_CASE("a CAD part flat only to single precision measures the same when its coordinates are rounded again")
-{
-	// A part cut from a robot link exported in single precision: its -x side is a fan of hull facets
-	// tilted by about 1e-6 against each other. Rounding adds hull vertices on that side, and small hull
-	// triangles between the tilted planes. A facet grows against its first triangle's plane, not from
-	// neighbour to neighbour, or those small triangles would join planes that rounding alone does not.
-	const TriMesh part = read_part("cad_part_flat_to_float.obj");
-	REQUIRE(part.V.size() == 910);
-	same_when_rounded_again(part);
 }
