@@ -12,7 +12,7 @@ import pymeshlab
 import pytest
 
 import pymeshlab_acd
-from support.meshes import add_mesh, is_closed_manifold, torus, volume
+from support.meshes import add_mesh, extrude, is_closed_manifold, torus, volume
 from support.partition import check_partition
 
 cad_solids = pytest.importorskip("support.cad_solids")
@@ -69,11 +69,16 @@ def test_belt_pulley_in_its_three_pieces():
 
 
 def test_low_boss_comes_off_its_plate_whole():
-    """A boss whose sides rise 15 degrees from its plate: with the default settings the plate's top face
-    takes it off in one piece (the plate and the boss), where the bisector slices across both."""
+    """A boss whose sides rise 15 degrees from its plate: the plate's top face takes it off in one piece
+    (the plate and the boss), where the bisector slices across both; merged by concavity they stay two.
+    Merged by the hull's distance (the default) they are one part: the boss is low enough for the hull
+    over both to stay within tau of them."""
+    ms, res, ids = run("bossed_plate", 2.0, merge=None, merge_measure="concavity")
+    parts = check_partition(ms, 0, ids, tau_abs=res["tau_model_units"], overlap_samples=10, merge_measure="concavity")
+    assert sorted(volume(V, F) for V, F, _ in parts) == pytest.approx([350.0, 9600.0], rel=1e-4)
     ms, res, ids = run("bossed_plate", 2.0, merge=None)
     parts = check_partition(ms, 0, ids, tau_abs=res["tau_model_units"], overlap_samples=10)
-    assert sorted(volume(V, F) for V, F, _ in parts) == pytest.approx([350.0, 9600.0], rel=1e-4)
+    assert [volume(V, F) for V, F, _ in parts] == pytest.approx([9950.0], rel=1e-4)
 
     # In any pose: the flat is found by the faces' own planes, not by the axes.
     import test_equivariance as te
@@ -81,7 +86,7 @@ def test_low_boss_comes_off_its_plate_whole():
     for seed in range(3):
         ms = pymeshlab.MeshSet()
         add_mesh(ms, V @ te.random_rotation(seed).T, F, "bossed_plate")
-        _, ids = pymeshlab_acd.decompose(ms, with_tree=False, tau=2.0)
+        _, ids = pymeshlab_acd.decompose(ms, with_tree=False, tau=2.0, merge_measure="concavity")
         vols = sorted(volume(ms.mesh(i).vertex_matrix(), ms.mesh(i).face_matrix()) for i in ids)
         assert vols == pytest.approx([350.0, 9600.0], rel=1e-4), seed
 
@@ -163,3 +168,21 @@ def test_the_same_parts_merge_in_any_pose(name):
     for seed in range(3):
         merges, vols = parts(V @ te.random_rotation(seed).T)
         assert te.same_parts(vols, vols0), (seed, merges, merges0, len(vols), len(vols0))
+
+
+def test_a_slot_narrower_than_tau_merges_by_the_hull_not_by_the_notches():
+    """A block with a slot 0.2 wide and 1.6 deep, at tau 5% (0.19): merged by the hull's distance (the
+    default), the slot stays inside one part whose hull spans it, within tau of it (re-measured here);
+    merged by concavity too, the slot's floor, 1.6 below that hull, keeps the block in more parts."""
+    V, F = extrude([(0, 0), (3, 0), (3, 2), (1.6, 2), (1.6, 0.4), (1.4, 0.4), (1.4, 2), (0, 2)], 0, 1)
+    res = {}
+    for measure in ("hull_distance", "concavity"):
+        ms = pymeshlab.MeshSet()
+        pymeshlab_acd.load()
+        add_mesh(ms, V, F, "slotted")
+        res[measure], ids = pymeshlab_acd.decompose(ms, with_tree=False, tau=5.0, merge_measure=measure)
+        assert res[measure]["tau_convex"]
+        check_partition(ms, 0, ids, tau_abs=res[measure]["tau_model_units"], overlap_samples=10, merge_measure=measure)
+    assert res["hull_distance"]["parts"] < res["concavity"]["parts"]
+    assert res["hull_distance"]["hull_certified_parts"] >= 1 and res["concavity"]["hull_certified_parts"] == 0
+    assert res["hull_distance"]["max_concavity"] > res["hull_distance"]["tau_model_units"]   # the slot's floor

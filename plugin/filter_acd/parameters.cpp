@@ -84,7 +84,7 @@ void add_decomposition_parameters(RichParameterList& p, const DecompositionParam
 	for (const acd::Option& o : acd::decomposition_options()) {
 		const std::string name = o.name;
 		if ((name == "output_hulls" && !which.output_hulls) || ((name == "max_hull_vertices" || name == "engine") && !which.max_hull_vertices)) continue;
-		if ((name == "merge_parts" || name == "cut_search") && !which.merge) continue;   // the skeleton's one tree
+		if ((name == "merge_parts" || name == "merge_measure" || name == "cut_search") && !which.merge) continue;   // the skeleton's one tree
 		double value = o.value;
 		if (name == "tau" && which.tau > 0) value = which.tau;
 		if (name == "cut_plane_selection" && which.cut_plane) value = o.value_of(which.cut_plane);
@@ -149,6 +149,7 @@ acd::DecomposeOptions decompose_options(const RichParameterList& par, double siz
 	o.threads             = par.getInt("threads");
 	// The skeleton follows the cut tree, so its filter has no merge.
 	o.merge_parts         = par.hasParameter("merge_parts") && par.getBool("merge_parts");
+	if (par.hasParameter("merge_measure")) o.merge_measure = chosen<acd::MergeMeasure>(par, opt("merge_measure"));
 	o.cut_search          = par.hasParameter("cut_search") ? chosen<acd::CutSearch>(par, opt("cut_search")) : acd::CutSearch::Fast;
 	if (o.max_parts < 0) throw MLException("max_parts must be 0 (no limit) or positive.");
 	if (o.time_limit_seconds < 0) throw MLException("time_limit must be 0 (no limit) or positive.");

@@ -142,7 +142,7 @@ def decompose(ms, with_tree=True, **params):
     """Decompose the current mesh. Returns (result dict, part layer ids); with `with_tree` (or a
     `tree_file` to keep), the tree, read back from the JSON file the filter writes, is under "tree".
 
-    Parameters are the filter's (tau, tau_unit, cut_plane_selection, max_parts, merge_parts, cut_search, output_hulls,
+    Parameters are the filter's (tau, tau_unit, cut_plane_selection, max_parts, merge_parts, merge_measure, cut_search, output_hulls,
     max_hull_vertices, engine, hole_handling, hole_order, preprocessing, wrap_alpha, wrap_offset,
     on_self_intersection, time_limit, tree_file).
     """

@@ -57,7 +57,7 @@ def cmd_decompose(a):
     ms = _meshset(a.mesh)
     src = ms.current_mesh_id()
     params = dict(tau=a.tau, tau_unit=a.tau_unit, cut_plane_selection=a.cut_plane_selection,
-                  max_parts=a.max_parts, merge_parts=a.merge_parts, cut_search=a.cut_search, output_hulls=bool(a.hulls or a.out), max_hull_vertices=a.max_hull_vertices, engine=a.engine,
+                  max_parts=a.max_parts, merge_parts=a.merge_parts, merge_measure=a.merge_measure, cut_search=a.cut_search, output_hulls=bool(a.hulls or a.out), max_hull_vertices=a.max_hull_vertices, engine=a.engine,
                   time_limit=a.time_limit, preprocessing=a.preprocessing, wrap_alpha=a.wrap_alpha,
                   wrap_offset=a.wrap_offset, on_self_intersection=a.on_self_intersection,
                   hole_handling=a.hole_handling, hole_order=a.hole_order, threads=a.threads)
@@ -184,7 +184,7 @@ def cmd_batch(a):
                         ray_runtime_env=json.loads(a.ray_runtime_env) if a.ray_runtime_env else None,
                         progress=a.progress, tau=a.tau, tau_unit=a.tau_unit,
                         cut_plane_selection=a.cut_plane_selection, max_parts=a.max_parts,
-                        merge_parts=a.merge_parts, cut_search=a.cut_search, max_hull_vertices=a.max_hull_vertices, engine=a.engine,
+                        merge_parts=a.merge_parts, merge_measure=a.merge_measure, cut_search=a.cut_search, max_hull_vertices=a.max_hull_vertices, engine=a.engine,
                         preprocessing=a.preprocessing,
                         wrap_alpha=a.wrap_alpha, wrap_offset=a.wrap_offset,
                         time_limit=a.time_limit, hole_handling=a.hole_handling, hole_order=a.hole_order,
@@ -214,7 +214,7 @@ def cmd_robot(a):
             raise ValueError(f"--package {spec}: write it as NAME=FOLDER")
         packages[name] = folder
     bar = (lambda text: print(f"\r\033[K{_short(text, 100)}", end="", file=sys.stderr, flush=True)) if a.progress else None
-    opts = {k: getattr(a, k) for k in ("tau", "tau_unit", "cut_plane_selection", "max_parts", "merge_parts", "cut_search",
+    opts = {k: getattr(a, k) for k in ("tau", "tau_unit", "cut_plane_selection", "max_parts", "merge_parts", "merge_measure", "cut_search",
                                         "max_hull_vertices", "preprocessing", "wrap_alpha", "wrap_offset",
                                         "time_limit", "hole_handling", "hole_order", "on_self_intersection", "threads")}
     fmts = [f.strip() for f in a.format.split(",") if f.strip()]
@@ -311,7 +311,7 @@ def main(argv=None):
         s.add_argument("--no-progress", dest="progress", action="store_false", help="no progress bar")
     c.add_argument("--out", help="folder for concavity.ply (vertex quality = concavity)")
     d.add_argument("--out", help="folder for hulls.obj (one object per hull), parts.obj and summary.json")
-    add_arguments(d, "tau", "tau_unit", "cut_plane_selection", "max_parts", "merge_parts", "cut_search",
+    add_arguments(d, "tau", "tau_unit", "cut_plane_selection", "max_parts", "merge_parts", "merge_measure", "cut_search",
                   "max_hull_vertices", "engine", "preprocessing", "wrap_alpha", "wrap_offset", "time_limit", "hole_handling", "hole_order",
                   "on_self_intersection", "threads")
     d.add_argument("--hulls", action="store_true", help="also add each part's hull as a layer (always with --out)")
@@ -337,7 +337,7 @@ def main(argv=None):
                    "or auto), or 'local' to start a local Ray instance of --workers CPUs")
     b.add_argument("--ray-runtime-env", metavar="JSON", help="Ray runtime_env for the workers, e.g. "
                    "'{\"pip\": [\"/shared/pymeshlab_acd-0.1.0-py3-none-any.whl\"]}'")
-    add_arguments(b, "tau", "tau_unit", "cut_plane_selection", "max_parts", "merge_parts", "cut_search",
+    add_arguments(b, "tau", "tau_unit", "cut_plane_selection", "max_parts", "merge_parts", "merge_measure", "cut_search",
                   "max_hull_vertices", "engine", "preprocessing", "wrap_alpha", "wrap_offset", "time_limit", "hole_handling", "hole_order",
                   "on_self_intersection", "threads")
     b.add_argument("--timeout", type=float, default=BATCH["timeout"],
@@ -357,7 +357,7 @@ def main(argv=None):
     r.add_argument("--resolve-paths", action="store_true", help="name kept meshes (visuals) by absolute paths "
                    "instead of package:// URIs, for simulators without a ROS package resolver (PyBullet)")
     r.add_argument("--no-progress", dest="progress", action="store_false", help="no progress line")
-    add_arguments(r, "tau", "tau_unit", "cut_plane_selection", "max_parts", "merge_parts", "cut_search",
+    add_arguments(r, "tau", "tau_unit", "cut_plane_selection", "max_parts", "merge_parts", "merge_measure", "cut_search",
                   "max_hull_vertices", "engine", "preprocessing", "wrap_alpha", "wrap_offset", "time_limit", "hole_handling", "hole_order",
                   "on_self_intersection", "threads")
     for s in (b, r):   # one cache for both: a robot's meshes and a batch's are decomposed once

@@ -27,7 +27,7 @@ DEFAULTS = dict(options.DEFAULTS, timeout=1800.0, formats=["obj", "stl"], scale=
 
 # The options that change a mesh's outputs (a rerun with other values redoes the mesh).
 # threads is not one of them (the parts are the same for any count), nor is the cache.
-_OUTPUT_KEYS = ("tau", "tau_unit", "cut_plane_selection", "max_parts", "merge_parts", "cut_search", "max_hull_vertices",
+_OUTPUT_KEYS = ("tau", "tau_unit", "cut_plane_selection", "max_parts", "merge_parts", "merge_measure", "cut_search", "max_hull_vertices",
                 "engine",
                 "preprocessing",
                 "wrap_alpha", "wrap_offset", "time_limit", "hole_handling", "hole_order", "on_self_intersection",

@@ -8,6 +8,7 @@ DEFAULTS = dict(
     cut_plane_selection="bisector_or_face",   # bisector_or_face | best | bisector | min_section
     max_parts=0,                    # 0: no limit
     merge_parts=True,               # merge neighbouring parts while their union stays within tau
+    merge_measure="hull_distance",  # hull_distance (its hull within tau of it) | concavity (also every notch)
     cut_search="thorough",          # fast (one cut tree, the paper's greedy) | thorough (two, the fewer parts kept)
     max_hull_vertices=0,            # per collision hull; 0: the exact hull
     engine="none",                  # none | mujoco | pybullet | physx | physx_gpu | unity: hulls within its limits
@@ -32,6 +33,9 @@ HELP = dict(
     max_parts="stop after this many parts (0: no limit; some parts may then exceed tau)",
     merge_parts="merge neighbouring parts while their union stays within tau (--no-merge-parts: the cut "
                 "tree's leaves as they are)",
+    merge_measure="what a union must stay within tau by to be merged: hull_distance, its hull's distance to it "
+                  "(a pocket the hull spans, such as a slot narrower than tau, may stay in one part); concavity, "
+                  "that and every notch's concavity (the cuts' own measure: more parts)",
     cut_search="thorough: grow the cut tree twice, cuts picked by the worse part's concavity (the paper) and by "
                "the parts both parts are estimated to need, and keep the one with fewer parts (about twice the "
                "time; a mesh of over 100,000 faces grows both on its simplified copy and certifies the better); fast: "

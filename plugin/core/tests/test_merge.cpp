@@ -299,3 +299,70 @@ TEST_CASE("merge further: from the leaves it is the merge; parts taken apart mer
 	CHECK(merge_parts_further(D, o.tau, [](int, int) { return true; }) == 0);
 	CHECK(D.parts().size() == after);
 }
+
+namespace {
+
+// The distance from p to triangle (a, b, c), by the test's own arithmetic: the plane's foot when it
+// lies inside, else the nearest of the three edges.
+double to_triangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c)
+{
+	const auto to_segment = [&](const Vec3& s, const Vec3& t) {
+		const double u = std::clamp((p - s).dot(t - s) / (t - s).squaredNorm(), 0.0, 1.0);
+		return (p - (s + u * (t - s))).norm();
+	};
+	const Vec3 n = (b - a).cross(c - a).normalized();
+	const Vec3 f = p - n * n.dot(p - a);
+	const bool inside = (b - a).cross(f - a).dot(n) >= 0 && (c - b).cross(f - b).dot(n) >= 0 && (a - c).cross(f - c).dot(n) >= 0;
+	return inside ? std::abs(n.dot(p - a)) : std::min({to_segment(a, b), to_segment(b, c), to_segment(c, a)});
+}
+
+// How far the hull of `m` reaches beyond it, from points spread over the hull's triangles (`steps` per
+// edge), plus the farthest any hull point lies from its nearest sample: no hull point is farther.
+double hull_reach_sampled(const TriMesh& m, int steps)
+{
+	const ConvexHull h(m.V);
+	double           reach = 0, spacing = 0;
+	for (const Tri& t : h.triangles) {
+		const Vec3 &a = h.points[t[0]], &b = h.points[t[1]], &c = h.points[t[2]];
+		spacing = std::max({spacing, (b - a).norm() / steps, (c - b).norm() / steps, (a - c).norm() / steps});
+		for (int i = 0; i <= steps; ++i)
+			for (int j = 0; i + j <= steps; ++j) {
+				const Vec3 p    = a + (b - a) * (double(i) / steps) + (c - a) * (double(j) / steps);
+				double     near = INFINITY;
+				for (const Tri& f : m.F) near = std::min(near, to_triangle(p, m.V[f[0]], m.V[f[1]], m.V[f[2]]));
+				reach = std::max(reach, near);
+			}
+	}
+	return reach + spacing;
+}
+
+} // namespace
+
+TEST_CASE("merge by hull distance: a slot narrower than tau stays in one part, its hull within tau")
+{
+	// A block with a slot 0.2 wide and 1.6 deep: the slot's floor lies 1.6 below the hull's lid, but
+	// the lid lies no more than 0.1 from the slot's walls.
+	const std::vector<Eigen::Vector2d> slotted = {{0, 0}, {3, 0}, {3, 2}, {1.6, 2}, {1.6, 0.4}, {1.4, 0.4}, {1.4, 2}, {0, 2}};
+	const TriMesh    block = shapes::extrude(slotted, 0, 1);
+	DecomposeOptions o     = unmerged(block, 0.05);
+	REQUIRE((o.tau > 0.1 && o.tau < 1.6));
+	const Decomposition cut = decompose(make_solid(block), o);
+	Decomposition       by_hull = cut, by_notches = cut;
+	merge_parts(by_hull, o.tau, {}, 0, nullptr, MergeMeasure::HullDistance);
+	merge_parts(by_notches, o.tau, {}, 0, nullptr, MergeMeasure::Concavity);
+	MESSAGE(cut.leaves().size() << " leaves: " << by_hull.parts().size() << " parts by the hull, " << by_notches.parts().size() << " by the notches");
+	CHECK(by_hull.parts().size() < by_notches.parts().size());
+	CHECK(by_hull.tau_convex());
+	CHECK(by_notches.tau_convex());
+	int hull_only = 0;
+	for (int p : by_hull.parts()) {
+		const Node& n = by_hull.nodes[p];
+		CHECK(hull_reach_sampled(n.mesh, 40) <= 1.01 * o.tau);
+		if (!n.hull_certified) continue;
+		++hull_only;
+		CHECK(!n.merged.empty());
+		CHECK(n.concavity > o.tau);   // the slot's floor, as the cuts measure it
+	}
+	CHECK(hull_only > 0);
+	for (int p : by_notches.parts()) CHECK((by_notches.nodes[p].concavity <= o.tau && !by_notches.nodes[p].hull_certified));
+}

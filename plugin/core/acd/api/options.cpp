@@ -23,6 +23,17 @@ std::vector<OptionChoice> cavity_choices()
 	         "inside parts (those parts are then not tau-convex)"}};
 }
 
+std::vector<OptionChoice> merge_measures()
+{
+	return {{"hull_distance", (int) MergeMeasure::HullDistance,
+	         "its hull's distance to it: how far the collision hull reaches beyond the union, certified as every "
+	         "part's is (a pocket the hull spans, such as a slot narrower than tau, may then stay in one part: its "
+	         "floor lies deeper than tau below the hull)"},
+	        {"concavity", (int) MergeMeasure::Concavity,
+	         "that and the cuts' own measure, every notch within tau of its bridge (the paper's concavity): merged "
+	         "parts are tau-convex as the cut tree's leaves are, and more of them"}};
+}
+
 std::vector<OptionChoice> cut_searches()
 {
 	return {{"thorough", (int) CutSearch::Thorough,
@@ -57,9 +68,11 @@ std::vector<Option> make_table()
 		 "Stop after this many parts (0 = no limit); the most concave notches are cut first, and the result reports "
 		 "whether the limit was reached.", {}},
 		{"merge_parts", O::Flag, 1, "Merge neighbouring parts",
-		 "After the cuts, merge parts that share a cut face while their union stays within tau (by the same measure "
-		 "as the cuts, hull distance included), the least concave union first: fewer parts, still an exact "
-		 "partition. Off: the cut tree's leaves as they are.", {}},
+		 "After the cuts, merge parts that share a cut face while their union stays within tau (by merge_measure), "
+		 "the least concave union first: fewer parts, still an exact partition. Off: the cut tree's leaves as they "
+		 "are.", {}},
+		{"merge_measure", O::Choice, (int) MergeMeasure::HullDistance, "Merge while within tau by",
+		 "What a union of neighbouring parts must stay within tau by to be merged.", merge_measures()},
 		{"cut_search", O::Choice, (int) CutSearch::Thorough, "Cut search", "How hard the search for cuts looks.",
 		 cut_searches()},
 		{"output_hulls", O::Flag, 0, "Also add part hulls",

@@ -394,10 +394,10 @@ struct Measure
 	//    over tau is cut at its notches anyway; letting the reach compete there would let the
 	//    refinement's rounding, which follows the pose, pick the notch). It is refined to 1% of tau
 	//    below tau, which certifies the hull within tau, and to 2% above.
-	void reach(double tau)
+	void reach(double tau, bool always)
 	{
 		const double slack = tau > 0 ? 0.01 * tau : 1e-3 * diag;
-		if (tau > 0 && r.max_concavity > tau) return;
+		if (tau > 0 && r.max_concavity > tau && !always) return;
 		const double    floor = tau > 0 ? tau : r.max_concavity;
 		const HullReach hr    = hull_reach(m, hull, bridge, floor, slack, tau > 0 ? 0.02 : 0.002);
 		r.hull_reach          = hr.lower;
@@ -407,6 +407,7 @@ struct Measure
 		if (hr.facet < 0 || !over) return;
 		// Not certified is over tau, even where the search stopped below it (its work bound).
 		const double c        = std::max(hr.lower, tau > 0 ? std::nextafter(floor, 2 * floor) : 0.0);
+		if (c <= r.max_concavity) return;   // notches over tau already (measured with `always`)
 		const int    v        = notch_nearest(hr.nearest);
 		r.vertex_concavity[v] = std::max(r.vertex_concavity[v], c);
 		r.max_concavity       = c;
@@ -434,7 +435,8 @@ struct Measure
 
 } // namespace
 
-ConcavityReport measure_concavity(const TriMesh& m, const Topology& topo, const ConvexHull& hull, double tau)
+ConcavityReport measure_concavity(const TriMesh& m, const Topology& topo, const ConvexHull& hull, double tau,
+                                  bool reach_always)
 {
 	Measure s(m, topo, hull);
 	s.require_closed();
@@ -445,7 +447,7 @@ ConcavityReport measure_concavity(const TriMesh& m, const Topology& topo, const 
 	s.associate();
 	s.distances();
 	s.notches();
-	s.reach(tau);
+	s.reach(tau, reach_always);
 	return std::move(s.r);
 }
 

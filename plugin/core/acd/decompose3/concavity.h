@@ -28,7 +28,9 @@ struct ConcavityReport
 // `m` must be a closed, edge-manifold, outward-oriented mesh (see make_solid) and `hull` its hull.
 // A part's concavity is the larger of its notches' distances to their bridges and the bridges' reach
 // beyond the surface, so it is never less than how far the part's hull stands off the part. With
-// `tau` > 0 (model units) the reach is refined only as far as deciding against tau needs.
-ConcavityReport measure_concavity(const TriMesh& m, const Topology& topo, const ConvexHull& hull, double tau = 0);
+// `tau` > 0 (model units) the reach is refined only as far as deciding against tau needs, and only for a
+// part whose notches lie within tau, unless `reach_always`.
+ConcavityReport measure_concavity(const TriMesh& m, const Topology& topo, const ConvexHull& hull, double tau = 0,
+                                  bool reach_always = false);
 
 } // namespace acd

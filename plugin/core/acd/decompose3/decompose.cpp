@@ -96,10 +96,10 @@ struct Measured
 	Topology                      topo;
 	ConvexHull                    hull;
 	ConcavityReport               rep;
-	Measured(const TriMesh& m, bool keep_cavities, double tau)
+	Measured(const TriMesh& m, bool keep_cavities, double tau, bool reach_always = false)
 	    : cavities(cavity_faces(m)),
 	      outer(keep_cavities && !cavities.empty() ? outer_surface(m, cavities) : TriMesh()),
-	      topo(surface(m)), hull(surface(m).V), rep(measure_concavity(surface(m), topo, hull, tau))
+	      topo(surface(m)), hull(surface(m).V), rep(measure_concavity(surface(m), topo, hull, tau, reach_always))
 	{
 	}
 	// What topo, hull and rep describe: the node's mesh `m` itself, or its outer surface. (The node's
@@ -671,10 +671,10 @@ Decomposition cut_tree(const Solid& solid, const DecomposeOptions& opt, Measured
 	return Driver(opt, memo).run(solid, std::move(root));
 }
 
-MeasuredPtr measure_node(Node& n, bool keep_cavities, double tau)
+MeasuredPtr measure_node(Node& n, bool keep_cavities, double tau, bool reach_always)
 {
 	n.notch = Vec3::Zero();
-	auto ms = std::make_shared<const Measured>(n.mesh, keep_cavities, tau);
+	auto ms = std::make_shared<const Measured>(n.mesh, keep_cavities, tau, reach_always);
 	take_measures(n, *ms);
 	return ms;
 }

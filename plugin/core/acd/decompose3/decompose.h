@@ -21,6 +21,15 @@ enum class CutSearch
 	Fast
 };
 
+// What a union of neighbouring parts must stay within tau by to be merged (merge_measure): how far its
+// hull reaches beyond it, what a collision hull adds; or that and the cuts' own measure, every notch's
+// concavity (a pocket the hull spans, such as a slot narrower than tau, is then cut apart).
+enum class MergeMeasure
+{
+	HullDistance,
+	Concavity
+};
+
 // What a candidate plane is judged by: its worse half's concavity (the paper's greedy rule), or the
 // parts its two halves are estimated to need afterwards.
 enum class PickRule
@@ -38,7 +47,8 @@ struct DecomposeOptions
 	HoleHandling      hole_handling = HoleHandling::BestPlane;
 	HoleOrder         hole_order = HoleOrder::First;
 	double            time_limit_seconds = 0; // 0 = none; bounds the cuts and the merge after them
-	bool              merge_parts = true;     // merge neighbouring parts while their union is tau-convex (merge.h)
+	bool              merge_parts = true;     // merge neighbouring parts while their union is within tau (merge.h)
+	MergeMeasure      merge_measure = MergeMeasure::HullDistance;   // by which measure
 	int               threads = 0;            // threads the decomposition may use (0: every core); the parts do not depend on it
 	CutSearch         cut_search = CutSearch::Thorough;
 	PickRule          pick_rule = PickRule::WorseHalf;   // one search's rule (set by cut_search's searches)
@@ -67,6 +77,7 @@ struct Node
 	TriMesh     mesh;              // the node's solid
 	std::vector<int> merged;       // a merged part (not in the cut tree): the leaves it unites, in path order
 	int         part = -1;         // a leaf united into a merged part: that part's node
+	bool        hull_certified = false;   // a merged part within tau by its hull alone, its notches deeper (MergeMeasure::HullDistance)
 	bool        leaf() const { return child[0] < 0 && merged.empty(); }
 };
 
@@ -101,10 +112,11 @@ struct Decomposition
 // How far a certified hull may reach: tau and the 1% of tau the reach is refined to; the rest is rounding.
 inline double reach_bar(double tau) { return 1.01 * tau * (1 + 1e-9); }
 
-// A part within tau by both measures (its hull within reach_bar) and not left uncut.
+// A part within tau by both measures (its hull within reach_bar), or by its hull alone where it was
+// merged by that measure, and not left uncut.
 inline bool certified(const Node& n, double tau)
 {
-	return !n.uncut && n.concavity <= tau && n.hull_distance_bound <= reach_bar(tau);
+	return !n.uncut && (n.concavity <= tau || n.hull_certified) && n.hull_distance_bound <= reach_bar(tau);
 }
 
 Decomposition decompose(const Solid& solid, const DecomposeOptions& options);
@@ -125,7 +137,7 @@ void renumber(Node& n, const std::vector<int>& id);
 struct Measured;
 using MeasuredPtr = std::shared_ptr<const Measured>;
 class MeasureMemo;
-MeasuredPtr   measure_node(Node& n, bool keep_cavities, double tau);
+MeasuredPtr   measure_node(Node& n, bool keep_cavities, double tau, bool reach_always = false);
 Decomposition cut_tree(const Solid& solid, const DecomposeOptions& options, MeasuredPtr root = nullptr,
                        MeasureMemo* memo = nullptr);
 

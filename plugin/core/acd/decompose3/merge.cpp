@@ -161,9 +161,10 @@ public:
 	// `first`: none to start from the leaves and measure every pair; else the parts as they stand
 	// are the groups and the first pairs measured are those `first` holds for.
 	Merger(Decomposition& D, double tau, const std::function<bool(int, const char*)>& progress, double seconds,
-	       MergeMemo* memo, const std::function<bool(int, int)>* first = nullptr)
-	    : D(D), tau(tau), eps(1e-9 * extent(D.nodes[0].mesh.V)), progress(progress), seconds(seconds),
-	      start(std::chrono::steady_clock::now()), memo(memo), first(first), heap(Later{this})
+	       MergeMemo* memo, MergeMeasure measure, const std::function<bool(int, int)>* first = nullptr)
+	    : D(D), tau(tau), eps(1e-9 * extent(D.nodes[0].mesh.V)), by_hull(measure == MergeMeasure::HullDistance),
+	      progress(progress), seconds(seconds), start(std::chrono::steady_clock::now()), memo(memo), first(first),
+	      heap(Later{this})
 	{
 	}
 
@@ -184,6 +185,7 @@ public:
 private:
 	Decomposition&                                  D;
 	const double                                    tau, eps;
+	const bool                                      by_hull;   // MergeMeasure::HullDistance
 	const std::function<bool(int, const char*)>&    progress;
 	const double                                    seconds;   // 0: no time limit
 	const std::chrono::steady_clock::time_point     start;
@@ -353,7 +355,7 @@ private:
 		std::vector<Vec3> corners = A.extreme;
 		corners.insert(corners.end(), B.extreme.begin(), B.extreme.end());
 		const ConvexHull h(corners);
-		if (notch_deeper_than_tau(A, B, h, planes)) return std::nullopt;
+		if (!by_hull && notch_deeper_than_tau(A, B, h, planes)) return std::nullopt;   // by the hull, notches may lie deeper
 		if (hull_reach(both, h, std::vector<char>(h.facets(), 1), bar(), 0.1 * tau, 1e9, kPrefilterEvaluations).lower > bar())
 			return std::nullopt;
 		Solid s;
@@ -367,7 +369,7 @@ private:
 		if (std::abs(s.volume - PA.volume - PB.volume) > 1e-6 * (PA.volume + PB.volume)) return std::nullopt;
 		const Topology        topo(s.mesh);
 		const ConvexHull      hull(s.mesh.V);
-		const ConcavityReport rep = measure_concavity(s.mesh, topo, hull, tau);
+		const ConcavityReport rep = measure_concavity(s.mesh, topo, hull, tau, by_hull);
 		Group                 g;
 		Node&                 n = g.part;
 		n.concavity           = rep.max_concavity;
@@ -376,6 +378,7 @@ private:
 		n.volume              = s.volume;
 		n.notch_count         = rep.notches;
 		if (rep.max_vertex >= 0) n.notch = s.mesh.V[rep.max_vertex];
+		n.hull_certified      = by_hull && n.concavity > tau;
 		if (!certified(n, tau)) return std::nullopt;
 		// No fold of its own: the union crosses itself no more than its parts did (a part cut from a
 		// surface that nearly touches itself may carry such crossings from the cuts).
@@ -572,15 +575,16 @@ std::vector<LeafContact> neighbouring_leaves(const Decomposition& D)
 }
 
 int merge_parts(Decomposition& D, double tau, const std::function<bool(int, const char*)>& progress, double seconds,
-                MergeMemo* memo)
+                MergeMemo* memo, MergeMeasure measure)
 {
-	return Merger(D, tau, progress, seconds, memo).run();
+	return Merger(D, tau, progress, seconds, memo, measure).run();
 }
 
 int merge_parts_further(Decomposition& D, double tau, const std::function<bool(int, int)>& first,
-                        const std::function<bool(int, const char*)>& progress, double seconds, MergeMemo* memo)
+                        const std::function<bool(int, const char*)>& progress, double seconds, MergeMemo* memo,
+                        MergeMeasure measure)
 {
-	return Merger(D, tau, progress, seconds, memo, &first).run();
+	return Merger(D, tau, progress, seconds, memo, measure, &first).run();
 }
 
 void drop_nodes(Decomposition& D, const std::vector<char>& drop)

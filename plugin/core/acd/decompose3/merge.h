@@ -11,9 +11,10 @@
 namespace acd {
 
 // Leaves sharing a cut's cap (with positive area) are neighbours. Greedily, the neighbouring pair
-// whose union is least concave is merged, while the union passes the cuts' certificate: the paper's
-// concavity (which includes the hull's reach) at most tau and the hull's reach certified within 1% of
-// tau, one shell, no cavity. Unions are exact (CGAL corefinement), so the parts stay an exact
+// whose union is least concave is merged, while the union is one shell without a cavity and passes the
+// certificate `measure` names: its hull's reach beyond it certified within tau (to 1% of tau); with
+// MergeMeasure::Concavity also the paper's concavity at most tau, the cuts' own certificate. A part
+// merged by its hull alone is marked `hull_certified`. Unions are exact (CGAL corefinement), so the parts stay an exact
 // partition of the solid. The cut tree is kept as it is; each merged part is appended as a node
 // whose `merged` lists the leaves it unites, and those leaves point to it with `part`. Leaves over
 // tau (uncut) are never merged. With `seconds` > 0 merging stops once that long has passed (the parts
@@ -32,7 +33,7 @@ public:
 	std::unique_ptr<Unions> unions;
 };
 int merge_parts(Decomposition& D, double tau, const std::function<bool(int, const char*)>& progress = {},
-                double seconds = 0, MergeMemo* memo = nullptr);
+                double seconds = 0, MergeMemo* memo = nullptr, MergeMeasure measure = MergeMeasure::HullDistance);
 
 // The merge again, from the parts as they stand (merged parts included) rather than the leaves: for a
 // tree grown in pieces, each merged on its own (the proxy search's parts searched again), so that the
@@ -41,7 +42,7 @@ int merge_parts(Decomposition& D, double tau, const std::function<bool(int, cons
 // D.nodes (the ids after it shift). Returns the merges made; D.merges counts them too.
 int merge_parts_further(Decomposition& D, double tau, const std::function<bool(int, int)>& first,
                         const std::function<bool(int, const char*)>& progress = {}, double seconds = 0,
-                        MergeMemo* memo = nullptr);
+                        MergeMemo* memo = nullptr, MergeMeasure measure = MergeMeasure::HullDistance);
 
 // D without the nodes marked in `drop` (none of them a tree node another refers to), ids renumbered.
 void drop_nodes(Decomposition& D, const std::vector<char>& drop);

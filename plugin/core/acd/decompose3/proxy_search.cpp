@@ -208,7 +208,7 @@ private:
 				if (e.code != Error::OpenPart) throw;
 				return std::nullopt;
 			}
-			if (merge) merge_parts(P, o.tau, po.progress, left(), both ? &unions : memo);
+			if (merge) merge_parts(P, o.tau, po.progress, left(), both ? &unions : memo, o.merge_measure);
 			P.pick_rule = rule;
 			if (!kept || better(P, *kept)) kept = std::move(P);
 		}
@@ -283,7 +283,7 @@ private:
 			if (!ra && !rb) return false;
 			return !(ra && rb && *ra == *rb && as_is.count(*ra));
 		};
-		merge_parts_further(D, o.tau, across, o.progress, left(), memo);
+		merge_parts_further(D, o.tau, across, o.progress, left(), memo, o.merge_measure);
 	}
 
 	// The proxy's merged parts made of the solid's leaves (all reached), glued on the cuts between
@@ -400,7 +400,9 @@ private:
 		catch (const Error&) {
 			return std::nullopt;
 		}
-		measure_node(n, keep, o.tau);
+		const bool by_hull = o.merge_measure == MergeMeasure::HullDistance;
+		measure_node(n, keep, o.tau, by_hull);
+		n.hull_certified = by_hull && n.concavity > o.tau;
 		if (!certified(n, o.tau) || n.cavities > 0) return std::nullopt;
 		// No fold of its own, as in the merge: crossings where leaves touch across a cut are none,
 		// and the rest no more than the leaves carried from the cuts.
@@ -440,7 +442,7 @@ private:
 		DecomposeOptions eo   = with;
 		eo.time_limit_seconds = left();
 		Decomposition sub     = cut_tree(s, eo, std::move(root), measures);
-		if (merge) merge_parts(sub, o.tau, with.progress, left(), memo);
+		if (merge) merge_parts(sub, o.tau, with.progress, left(), memo, o.merge_measure);
 		return sub;
 	}
 

@@ -52,6 +52,7 @@ json node_json(const Node& n, int id, bool geometry)
 	if (n.concavity > 0) o["notch"] = {n.notch.x(), n.notch.y(), n.notch.z()};
 	if (n.has_plane) o["plane"] = {{"normal", {n.plane.n.x(), n.plane.n.y(), n.plane.n.z()}}, {"offset", n.plane.d}};
 	if (!n.merged.empty()) o["merged"] = n.merged;
+	if (n.hull_certified) o["hull_certified"] = true;   // within tau by its hull, its notches deeper
 	if (n.part >= 0) o["part"] = n.part;
 	if (geometry && !n.mesh.F.empty()) {
 		o["hull"] = mesh_json(ConvexHull(n.mesh.V).mesh());
@@ -152,6 +153,7 @@ Decomposition tree_from_json(const std::string& text, std::vector<TriMesh>* hull
 				n.plane.d      = o["plane"].at("offset").get<double>();
 			}
 			if (o.contains("merged")) n.merged = o["merged"].get<std::vector<int>>();
+			n.hull_certified = o.value("hull_certified", false);
 			n.part = o.value("part", -1);
 			for (int l : n.merged)
 				if (l < 0 || l >= count) bad("has broken links.");
