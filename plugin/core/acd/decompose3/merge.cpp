@@ -380,18 +380,28 @@ private:
 		if (rep.max_vertex >= 0) n.notch = s.mesh.V[rep.max_vertex];
 		n.hull_certified      = by_hull && n.concavity > tau;
 		if (!certified(n, tau)) return std::nullopt;
-		// No fold of its own: the union crosses itself no more than its parts did (a part cut from a
-		// surface that nearly touches itself may carry such crossings from the cuts).
+		n.mesh    = std::move(s.mesh);
+		g.extreme = extreme_points(corners);
+		g.leaves  = std::move(leaves);
+		return g;   // its folds are counted if it comes to be merged (settle)
+	}
+
+	// A union about to be merged, if it has no fold of its own: it crosses itself no more than groups a
+	// and b did (a part cut from a surface that nearly touches itself may carry such crossings from the
+	// cuts). Counted for the unions merged only, not for every union that passes the certificate: the
+	// crossing search costs about as much as the union's measure. What later unions need of it too.
+	bool settle(Group& u, int a, int b) const
+	{
+		Solid s;
+		std::swap(s.mesh, u.part.mesh);
 		find_crossings(s);
-		const long crossings = crossings_off_cuts(s, separating(leaves), eps);
-		if (crossings > 0 && crossings > own_crossings(A) + own_crossings(B)) return std::nullopt;
-		g.notches   = notch_points(s.mesh, topo);
-		n.mesh      = std::move(s.mesh);
-		g.extreme   = extreme_points(corners);
-		g.crossings = crossings;
-		g.leaves    = std::move(leaves);
-		g.content   = memo ? content_hash(n.mesh) : 0;
-		return g;
+		const long crossings = crossings_off_cuts(s, separating(u.leaves), eps);
+		std::swap(s.mesh, u.part.mesh);
+		if (crossings > 0 && crossings > own_crossings(groups[a]) + own_crossings(groups[b])) return false;
+		u.crossings = crossings;
+		u.notches   = notch_points(u.part.mesh, Topology(u.part.mesh));
+		u.content   = memo ? content_hash(u.part.mesh) : 0;
+		return true;
 	}
 
 	// A lower bound of the union's concavity from its parts' notches: a notch away from the cuts they
@@ -477,6 +487,7 @@ private:
 			Group u = std::move(pool[i].u);
 			pool[i].u = Group();
 			if (!groups[a].alive || !groups[b].alive) continue;   // one of them has merged since
+			if (!settle(u, a, b)) continue;
 			for (int x : {a, b}) {   // merged away: only its leaves are kept
 				groups[x].alive = false;
 				groups[x].part  = Node();
