@@ -175,6 +175,10 @@ std::vector<Eigen::Vector2d> u_shape()
 {
 	return {{0, 0}, {3, 0}, {3, 2}, {2, 2}, {2, 1}, {1, 1}, {1, 2}, {0, 2}};
 }
+std::vector<Eigen::Vector2d> slot_shape()
+{
+	return {{0, 0}, {3, 0}, {3, 2}, {1.6, 2}, {1.6, 0.4}, {1.4, 0.4}, {1.4, 2}, {0, 2}};
+}
 std::vector<Eigen::Vector2d> plus_shape()
 {
 	return {{1, 0}, {2, 0}, {2, 1}, {3, 1}, {3, 2}, {2, 2}, {2, 3}, {1, 3}, {1, 2}, {0, 2}, {0, 1}, {1, 1}};

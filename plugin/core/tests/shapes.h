@@ -19,6 +19,7 @@ TriMesh inverted(TriMesh m);
 TriMesh subdivided(const TriMesh& m);
 std::vector<Eigen::Vector2d> l_shape();   // (0,0)-(2,0)-(2,1)-(1,1)-(1,2)-(0,2)
 std::vector<Eigen::Vector2d> u_shape();
+std::vector<Eigen::Vector2d> slot_shape();   // a 3 x 2 block with a slot 0.2 wide and 1.6 deep
 std::vector<Eigen::Vector2d> plus_shape();
 // The plane n.x = d, n normalized.
 acd::Plane plane(Vec3 n, double d);

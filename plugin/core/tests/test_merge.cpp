@@ -342,8 +342,7 @@ TEST_CASE("merge by hull distance: a slot narrower than tau stays in one part, i
 {
 	// A block with a slot 0.2 wide and 1.6 deep: the slot's floor lies 1.6 below the hull's lid, but
 	// the lid lies no more than 0.1 from the slot's walls.
-	const std::vector<Eigen::Vector2d> slotted = {{0, 0}, {3, 0}, {3, 2}, {1.6, 2}, {1.6, 0.4}, {1.4, 0.4}, {1.4, 2}, {0, 2}};
-	const TriMesh    block = shapes::extrude(slotted, 0, 1);
+	const TriMesh    block = shapes::extrude(shapes::slot_shape(), 0, 1);
 	DecomposeOptions o     = unmerged(block, 0.05);
 	REQUIRE((o.tau > 0.1 && o.tau < 1.6));
 	const Decomposition cut = decompose(make_solid(block), o);

@@ -1,4 +1,5 @@
 #include "acd/io/tree_io.h"
+#include "acd/mesh/measures.h"
 #include "acd/solid/solid.h"
 #include "shapes.h"
 #include "check.h"
@@ -27,6 +28,24 @@ TEST_CASE("a tree survives a round trip through json")
 		CHECK(!hulls[i].F.empty());
 	}
 	CHECK(R.leaves() == D.leaves());
+}
+
+TEST_CASE("a part merged by its hull alone is marked so in the tree file")
+{
+	// The slotted block at tau 5% of its size merges into one part whose notches lie deeper than tau.
+	const TriMesh    block = shapes::extrude(shapes::slot_shape(), 0, 1);
+	DecomposeOptions o;
+	o.tau                 = 0.05 * extent(block.V);
+	const Decomposition D = decompose(make_solid(block), o);
+	const Decomposition R = tree_from_json(tree_to_json(D, true));
+	int                 marked = 0;
+	REQUIRE(R.nodes.size() == D.nodes.size());
+	for (size_t i = 0; i < D.nodes.size(); ++i) {
+		CHECK(R.nodes[i].hull_certified == D.nodes[i].hull_certified);
+		marked += D.nodes[i].hull_certified;
+	}
+	CHECK(marked == 1);
+	CHECK(D.tau_convex());
 }
 
 TEST_CASE("a broken tree file is refused with the reason")
