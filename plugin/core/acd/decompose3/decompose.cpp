@@ -118,6 +118,7 @@ void take_measures(Node& n, const Measured& ms)
 	n.volume              = signed_volume(n.mesh);
 	n.notch_count         = ms.rep.notches;
 	n.cavities            = (int) ms.cavities.size();
+	n.hull_certified      = false;   // a merge that measured the reach beyond the notches says otherwise
 	if (ms.rep.max_vertex >= 0) n.notch = ms.surface(n.mesh).V[ms.rep.max_vertex];
 }
 
