@@ -119,6 +119,14 @@ inline bool certified(const Node& n, double tau)
 	return !n.uncut && (n.concavity <= tau || n.hull_certified) && n.hull_distance_bound <= reach_bar(tau);
 }
 
+// A merged part's certificate under `measure`: by MergeMeasure::HullDistance its hull alone may vouch for
+// it (marked hull_certified), so its reach must have been measured beyond its notches (reach_always).
+inline bool certify_merged(Node& n, double tau, MergeMeasure measure)
+{
+	n.hull_certified = measure == MergeMeasure::HullDistance && n.concavity > tau;
+	return certified(n, tau);
+}
+
 Decomposition decompose(const Solid& solid, const DecomposeOptions& options);
 
 // Of two searches of one solid, whether `a` is the better: certified first, then the fewer parts, then

@@ -131,7 +131,7 @@ struct Group
 	std::uint64_t     content = 0;   // its solid's vertices and faces, hashed (MergeMemo's key)
 	Node              part;      // its solid and measures, as the merged part's node will hold them
 	std::vector<Vec3> extreme;   // the vertices of its hull
-	std::vector<Vec3> notches;   // the ends of its reflex edges
+	std::vector<Vec3> notches;   // the ends of its reflex edges (MergeMeasure::Concavity's prefilter only)
 	long              crossings = -1;  // faces crossing away from the cuts between its leaves (-1: not counted)
 	bool              alive = true;
 	int               origin = -1;   // the part's node it started as (merge_parts_further), else -1
@@ -162,9 +162,9 @@ public:
 	// are the groups and the first pairs measured are those `first` holds for.
 	Merger(Decomposition& D, double tau, const std::function<bool(int, const char*)>& progress, double seconds,
 	       MergeMemo* memo, MergeMeasure measure, const std::function<bool(int, int)>* first = nullptr)
-	    : D(D), tau(tau), eps(1e-9 * extent(D.nodes[0].mesh.V)), by_hull(measure == MergeMeasure::HullDistance),
-	      progress(progress), seconds(seconds), start(std::chrono::steady_clock::now()), memo(memo), first(first),
-	      heap(Later{this})
+	    : D(D), tau(tau), eps(1e-9 * extent(D.nodes[0].mesh.V)), measure(measure),
+	      by_hull(measure == MergeMeasure::HullDistance), progress(progress), seconds(seconds),
+	      start(std::chrono::steady_clock::now()), memo(memo), first(first), heap(Later{this})
 	{
 	}
 
@@ -185,7 +185,8 @@ public:
 private:
 	Decomposition&                                  D;
 	const double                                    tau, eps;
-	const bool                                      by_hull;   // MergeMeasure::HullDistance
+	const MergeMeasure                              measure;
+	const bool                                      by_hull;   // measure is HullDistance: no notch need lie within tau
 	const std::function<bool(int, const char*)>&    progress;
 	const double                                    seconds;   // 0: no time limit
 	const std::chrono::steady_clock::time_point     start;
@@ -248,7 +249,7 @@ private:
 		parallel_for(todo.size(), [&](size_t i) {
 			Group& g  = groups[todo[i]];
 			g.extreme = extreme_points(g.part.mesh.V);
-			g.notches = notch_points(g.part.mesh, Topology(g.part.mesh));
+			if (!by_hull) g.notches = notch_points(g.part.mesh, Topology(g.part.mesh));   // the notch prefilter's
 		});
 	}
 
@@ -378,8 +379,7 @@ private:
 		n.volume              = s.volume;
 		n.notch_count         = rep.notches;
 		if (rep.max_vertex >= 0) n.notch = s.mesh.V[rep.max_vertex];
-		n.hull_certified      = by_hull && n.concavity > tau;
-		if (!certified(n, tau)) return std::nullopt;
+		if (!certify_merged(n, tau, measure)) return std::nullopt;
 		n.mesh    = std::move(s.mesh);
 		g.extreme = extreme_points(corners);
 		g.leaves  = std::move(leaves);
@@ -399,7 +399,7 @@ private:
 		std::swap(s.mesh, u.part.mesh);
 		if (crossings > 0 && crossings > own_crossings(groups[a]) + own_crossings(groups[b])) return false;
 		u.crossings = crossings;
-		u.notches   = notch_points(u.part.mesh, Topology(u.part.mesh));
+		if (!by_hull) u.notches = notch_points(u.part.mesh, Topology(u.part.mesh));
 		u.content   = memo ? content_hash(u.part.mesh) : 0;
 		return true;
 	}

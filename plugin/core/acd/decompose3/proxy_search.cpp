@@ -400,10 +400,8 @@ private:
 		catch (const Error&) {
 			return std::nullopt;
 		}
-		const bool by_hull = o.merge_measure == MergeMeasure::HullDistance;
-		measure_node(n, keep, o.tau, by_hull);
-		n.hull_certified = by_hull && n.concavity > o.tau;
-		if (!certified(n, o.tau) || n.cavities > 0) return std::nullopt;
+		measure_node(n, keep, o.tau, o.merge_measure == MergeMeasure::HullDistance);
+		if (!certify_merged(n, o.tau, o.merge_measure) || n.cavities > 0) return std::nullopt;
 		// No fold of its own, as in the merge: crossings where leaves touch across a cut are none,
 		// and the rest no more than the leaves carried from the cuts.
 		find_crossings(s);
