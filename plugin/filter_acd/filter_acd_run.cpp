@@ -267,7 +267,7 @@ FilterACD::decompose(const RichParameterList& par, MeshDocument& md, vcg::CallBa
 	const int              by_hull = (int) std::count_if(parts.begin(), parts.end(), [&](int i) { return d.nodes[i].hull_certified; });
 	if (d.merges > 0) log("%d neighbouring parts merged after the cuts (their unions within tau)", d.merges);
 	if (by_hull > 0)
-		log("%d merged parts are within tau by their hulls, with notches up to %.3g tau deep below them "
+		log("%d parts are within tau by their hulls, with notches up to %.3g tau deep below them "
 		    "(merge_measure = concavity keeps every notch within tau)", by_hull, d.max_part_concavity() / o.tau);
 	if (d.pick_rule == acd::PickRule::PartsNeeded)
 		log("The cuts picked by the parts their halves need left fewer parts than those picked by the worse half");
@@ -297,7 +297,7 @@ FilterACD::decompose(const RichParameterList& par, MeshDocument& md, vcg::CallBa
 		{"uncut_parts", uncut},
 		{"films_dropped", d.films_dropped},
 		{"merges", d.merges},
-		{"hull_certified_parts", by_hull},   // merged within tau by their hulls alone (merge_measure)
+		{"hull_certified_parts", by_hull},   // within tau by their hulls alone (merge_measure)
 		{"cuts_by_parts_needed", d.pick_rule == acd::PickRule::PartsNeeded},   // cut_search kept its second tree
 		{"merge_time_limit_reached", d.merge_time_limit_reached},
 		{"tree_nodes", (int) d.nodes.size()},

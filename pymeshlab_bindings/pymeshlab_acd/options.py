@@ -34,7 +34,8 @@ HELP = dict(
     merge_parts="merge neighbouring parts while their union stays within tau (--no-merge-parts: the cut "
                 "tree's leaves as they are)",
     merge_measure="what a union must stay within tau by to be merged: hull_distance, its hull's distance to it "
-                  "(a pocket the hull spans, such as a slot narrower than tau, may stay in one part); concavity, "
+                  "(a pocket the hull spans, such as a slot narrower than tau, may stay in one part, which is "
+                  "then not cut either); concavity, "
                   "that and every notch's concavity (the cuts' own measure: more parts)",
     cut_search="thorough: grow the cut tree twice, cuts picked by the worse part's concavity (the paper) and by "
                "the parts both parts are estimated to need, and keep the one with fewer parts (about twice the "

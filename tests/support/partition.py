@@ -48,10 +48,10 @@ def remeasured_concavity(V, F):
 
 
 def certified(V, F, tau_abs, label, hull_check=True, merge_measure="hull_distance"):
-    """A part within tau as the result promises it: a merged part (its label holds "+") merged by its
-    hull's distance (merge_measure hull_distance) by its hull alone, its notches may lie deeper; any
-    other part by its notches too."""
-    by_hull = "+" in label and merge_measure == "hull_distance"
+    """A part within tau as the result promises it: under merge_measure hull_distance (the default) by
+    its hull alone, as a part whose hull stays within tau is neither cut nor kept from merging, its
+    notches may lie deeper; under concavity by its notches too."""
+    by_hull = merge_measure == "hull_distance"
     if not by_hull:
         assert within_tau(V, F, tau_abs), f"{label} exceeds tau"
     if hull_check or by_hull:

@@ -365,3 +365,29 @@ TEST_CASE("merge by hull distance: a slot narrower than tau stays in one part, i
 	CHECK(hull_only > 0);
 	for (int p : by_notches.parts()) CHECK((by_notches.nodes[p].concavity <= o.tau && !by_notches.nodes[p].hull_certified));
 }
+
+TEST_CASE("under the hull distance measure a part whose hull stays within tau is not cut")
+{
+	// The slotted block at the same tau: its hull lies within tau of it, so the cuts stop at the root
+	// (one part, no merge needed); held to every notch, its slot is cut apart.
+	const TriMesh    block = shapes::extrude(shapes::slot_shape(), 0, 1);
+	DecomposeOptions o     = unmerged(block, 0.05);
+	o.merge_parts          = true;
+	const Decomposition by_hull = decompose(make_solid(block), o);
+	o.merge_measure             = MergeMeasure::Concavity;
+	const Decomposition by_notches = decompose(make_solid(block), o);
+	MESSAGE(by_hull.nodes.size() << " nodes by the hull, " << by_notches.parts().size() << " parts by the notches");
+	REQUIRE(by_hull.parts().size() == 1);
+	CHECK(by_hull.nodes.size() == 1);
+	CHECK(by_hull.merges == 0);
+	CHECK(by_hull.tau_convex());
+	const Node& root = by_hull.nodes[0];
+	CHECK(root.hull_certified);
+	CHECK(root.concavity > o.tau);
+	CHECK(hull_reach_sampled(root.mesh, 40) <= 1.01 * o.tau);
+	CHECK(by_notches.parts().size() > 1);
+	// Not cut on its notches alone: with the merge off the cut tree is the paper's.
+	o.merge_measure = MergeMeasure::HullDistance;
+	o.merge_parts   = false;
+	CHECK(decompose(make_solid(block), o).leaves().size() > 1);
+}

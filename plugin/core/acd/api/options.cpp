@@ -28,7 +28,7 @@ std::vector<OptionChoice> merge_measures()
 	return {{"hull_distance", (int) MergeMeasure::HullDistance,
 	         "its hull's distance to it: how far the collision hull reaches beyond the union, certified as every "
 	         "part's is (a pocket the hull spans, such as a slot narrower than tau, may then stay in one part: its "
-	         "floor lies deeper than tau below the hull)"},
+	         "floor lies deeper than tau below the hull); a part whose hull is so within tau is not cut either"},
 	        {"concavity", (int) MergeMeasure::Concavity,
 	         "that and the cuts' own measure, every notch within tau of its bridge (the paper's concavity): merged "
 	         "parts are tau-convex as the cut tree's leaves are, and more of them"}};

@@ -448,6 +448,7 @@ ConcavityReport measure_concavity(const TriMesh& m, const Topology& topo, const 
 	s.distances();
 	s.notches();
 	s.reach(tau, reach_always);
+	s.r.bridge = std::move(s.bridge);
 	return std::move(s.r);
 }
 

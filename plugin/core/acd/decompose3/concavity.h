@@ -23,6 +23,7 @@ struct ConcavityReport
 	double hull_reach = 0;        // largest distance from a bridge point to the surface found (see hull_reach.h)
 	double hull_reach_bound = 0;  // no bridge point lies farther from the surface
 	bool   reach_cut = false;     // max_concavity is the bridges' reach, charged to the nearest notch
+	std::vector<char> bridge;     // per hull facet: a bridge (not covered by the surface)
 };
 
 // `m` must be a closed, edge-manifold, outward-oriented mesh (see make_solid) and `hull` its hull.

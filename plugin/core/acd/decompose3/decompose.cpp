@@ -25,6 +25,7 @@
 #include <functional>
 #include <map>
 #include <memory>
+#include <mutex>
 #include <optional>
 #include <queue>
 #include <set>
@@ -96,6 +97,9 @@ struct Measured
 	Topology                      topo;
 	ConvexHull                    hull;
 	ConcavityReport               rep;
+	// The hull's reach searched beyond notches deeper than tau (within_by_hull), once per measure.
+	mutable std::mutex               reach_mutex;
+	mutable std::optional<HullReach> by_hull;
 	Measured(const TriMesh& m, bool keep_cavities, double tau, bool reach_always = false)
 	    : cavities(cavity_faces(m)),
 	      outer(keep_cavities && !cavities.empty() ? outer_surface(m, cavities) : TriMesh()),
@@ -108,6 +112,25 @@ struct Measured
 };
 
 namespace {
+
+// Whether the part measured by `ms` (its mesh `m`) is within tau by its hull alone, under
+// merge_measure=hull_distance with the merge on: over tau by its notches, without a cavity, its hull's
+// reach certified within tau to 1% of tau, as the cuts' measure certifies it. Its reach if so.
+const HullReach* within_by_hull(const Measured& ms, const TriMesh& m, const DecomposeOptions& opt)
+{
+	if (!opt.merge_parts || opt.merge_measure != MergeMeasure::HullDistance) return nullptr;
+	if (ms.rep.max_concavity <= opt.tau || !ms.cavities.empty() || !ms.outer.F.empty()) return nullptr;
+	const double                bar = reach_bar(opt.tau);
+	std::lock_guard<std::mutex> lock(ms.reach_mutex);
+	if (!ms.by_hull) {
+		// Most parts over tau by their notches reach beyond tau too: a bounded search finds a point past
+		// the bar first; the full search then certifies the rest.
+		HullReach hr = hull_reach(m, ms.hull, ms.rep.bridge, bar, 0.1 * opt.tau, 1e9, kReachPrefilter);
+		if (hr.lower <= bar) hr = hull_reach(m, ms.hull, ms.rep.bridge, opt.tau, 0.01 * opt.tau, 0.02);
+		ms.by_hull = hr;
+	}
+	return ms.by_hull->upper <= bar ? &*ms.by_hull : nullptr;
+}
 
 // A node's measures from its mesh's; its notch is kept when the mesh has none.
 void take_measures(Node& n, const Measured& ms)
@@ -229,6 +252,7 @@ public:
 	// One node: its target, candidate planes, their trials, the pick; the parts added.
 	int cut(int id)
 	{
+		if (stop_by_hull(id)) return 0;
 		Cut c;
 		c.id = id;
 		choose_target(c);
@@ -247,6 +271,16 @@ public:
 	void forget(int id) { measured[id].reset(); }
 
 private:
+	// Under merge_measure=hull_distance a node whose hull stays within tau of it is a part as it is,
+	// though its notches lie deeper (a slot narrower than tau, a low boss): the merge would unite its
+	// pieces again by the same certificate, so cutting it would only cost time and parts.
+	bool stop_by_hull(int id)
+	{
+		if (!acd::stop_by_hull(D.nodes[id], *measured[id], opt)) return false;
+		measured[id].reset();
+		return true;
+	}
+
 	MeasureMemo* const                           memo;       // measures shared with another search (or none)
 	std::vector<std::shared_ptr<const Measured>> measured;   // kept while a node waits to be cut
 	std::unordered_map<int, int>           films;      // per node: films dropped (bounded)
@@ -373,6 +407,14 @@ private:
 		return memo ? memo->find_or_make(m, opt.tau, keep, make) : make();
 	}
 
+	// A trial's part's concavity as the search weighs it: at tau where its hull alone certifies it
+	// (within_by_hull: it will not be cut), as the merge would certify its pieces' union.
+	double weight(const Trial& t, int s) const
+	{
+		const Measured& ms = *t.measures[s];
+		return within_by_hull(ms, t.so.parts[s], opt) ? opt.tau : ms.rep.max_concavity;
+	}
+
 	// The trial's two parts measured (false: one of them is beyond `beat`, the other left unmeasured).
 	// `both_cores` measures the two at once; otherwise the larger part goes first, as the deep notch
 	// is more often there.
@@ -385,7 +427,7 @@ private:
 		}
 		const int larger = va < vb ? 1 : 0;
 		measure_part(larger);
-		if (!(t.measures[larger]->rep.max_concavity < beat)) return false;
+		if (!(weight(t, larger) < beat)) return false;
 		measure_part(1 - larger);
 		return true;
 	}
@@ -421,7 +463,7 @@ private:
 		}
 		try {
 			if (!measure_parts(t, va, vb, beat, both_cores)) return;
-			const double a = t.measures[0]->rep.max_concavity, b = t.measures[1]->rep.max_concavity;
+			const double a = weight(t, 0), b = weight(t, 1);
 			if (chips(c.id, va, vb, a, b)) {
 				t.sliver = va < vb ? 0 : 1;
 				return;
@@ -678,6 +720,16 @@ MeasuredPtr measure_node(Node& n, bool keep_cavities, double tau, bool reach_alw
 	auto ms = std::make_shared<const Measured>(n.mesh, keep_cavities, tau, reach_always);
 	take_measures(n, *ms);
 	return ms;
+}
+
+bool stop_by_hull(Node& n, const Measured& ms, const DecomposeOptions& opt)
+{
+	const HullReach* r = within_by_hull(ms, n.mesh, opt);
+	if (!r) return false;
+	n.hull_distance       = r->lower;
+	n.hull_distance_bound = r->upper;
+	n.hull_certified      = true;
+	return true;
 }
 
 bool better(const Decomposition& a, const Decomposition& b)

@@ -22,8 +22,9 @@ enum class CutSearch
 };
 
 // What a union of neighbouring parts must stay within tau by to be merged (merge_measure): how far its
-// hull reaches beyond it, what a collision hull adds; or that and the cuts' own measure, every notch's
-// concavity (a pocket the hull spans, such as a slot narrower than tau, is then cut apart).
+// hull reaches beyond it, what a collision hull adds (and a part so within tau is not cut either: see
+// stop_by_hull); or that and the cuts' own measure, every notch's concavity (a pocket the hull spans,
+// such as a slot narrower than tau, is then cut apart).
 enum class MergeMeasure
 {
 	HullDistance,
@@ -77,7 +78,7 @@ struct Node
 	TriMesh     mesh;              // the node's solid
 	std::vector<int> merged;       // a merged part (not in the cut tree): the leaves it unites, in path order
 	int         part = -1;         // a leaf united into a merged part: that part's node
-	bool        hull_certified = false;   // a merged part within tau by its hull alone, its notches deeper (MergeMeasure::HullDistance)
+	bool        hull_certified = false;   // a part within tau by its hull alone, its notches deeper (MergeMeasure::HullDistance: merged, or not cut)
 	bool        leaf() const { return child[0] < 0 && merged.empty(); }
 };
 
@@ -146,6 +147,12 @@ struct Measured;
 using MeasuredPtr = std::shared_ptr<const Measured>;
 class MeasureMemo;
 MeasuredPtr   measure_node(Node& n, bool keep_cavities, double tau, bool reach_always = false);
+// Under merge_measure=hull_distance (and the merge on) a part over tau by its notches whose hull stays
+// within tau of it, measured to 1% of tau as the cuts' measure is, needs no cut: the merge would unite
+// its pieces again by that certificate. True then, with n's hull distances set and n hull_certified.
+// `ms`: n measured (measure_node); one shell without a cavity.
+constexpr int kReachPrefilter = 2000;   // distance queries spent looking for a point beyond the bar first
+bool          stop_by_hull(Node& n, const Measured& ms, const DecomposeOptions& options);
 Decomposition cut_tree(const Solid& solid, const DecomposeOptions& options, MeasuredPtr root = nullptr,
                        MeasureMemo* memo = nullptr);
 

@@ -198,7 +198,6 @@ private:
 	std::map<std::string, int>                      by_path;
 	std::vector<Candidate>                          pool;
 	int                                             merges = 0;
-	static constexpr int kPrefilterEvaluations = 2000;   // distance queries per pair before its union is built
 
 	// The least concave union first. Concavities within rounding of each other (a symmetric solid's
 	// congruent unions) tie, and ties go by the groups' first leaves' paths: a pose-free order.
@@ -357,7 +356,7 @@ private:
 		corners.insert(corners.end(), B.extreme.begin(), B.extreme.end());
 		const ConvexHull h(corners);
 		if (!by_hull && notch_deeper_than_tau(A, B, h, planes)) return std::nullopt;   // by the hull, notches may lie deeper
-		if (hull_reach(both, h, std::vector<char>(h.facets(), 1), bar(), 0.1 * tau, 1e9, kPrefilterEvaluations).lower > bar())
+		if (hull_reach(both, h, std::vector<char>(h.facets(), 1), bar(), 0.1 * tau, 1e9, kReachPrefilter).lower > bar())
 			return std::nullopt;
 		Solid s;
 		try {   // crossings searched last: most unions fail before, and the search costs as much as a measure

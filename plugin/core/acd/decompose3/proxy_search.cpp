@@ -168,8 +168,10 @@ private:
 		// A part that fails keeps its measure: its search starts from it.
 		std::vector<MeasuredPtr> measures(by_size.size());
 		parallel_for(by_size.size(), [&](size_t i) {
-			MeasuredPtr ms = measure_node(D.nodes[by_size[i]], keep, o.tau);
-			if (needs_search(D.nodes[by_size[i]])) measures[i] = std::move(ms);
+			Node&       n  = D.nodes[by_size[i]];
+			MeasuredPtr ms = measure_node(n, keep, o.tau);
+			stop_by_hull(n, *ms, o);   // as the cuts would stop on it
+			if (needs_search(n)) measures[i] = std::move(ms);
 		});
 		std::map<int, MeasuredPtr> failed;
 		for (size_t i = 0; i < by_size.size(); ++i)
