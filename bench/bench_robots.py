@@ -76,6 +76,8 @@ def main():
     if args.quick:   # ours always runs afresh on the subset (the check of the code at hand), in its own store
         stores["ours"] = out / "robots-ours-quick.json"
         stores["ours"].unlink(missing_ok=True)
+    for g in groups if args.fresh else []:   # the rows kept are read under a lock below: gone, not only ignored
+        stores[g].unlink(missing_ok=True)
     for g, f in stores.items():   # a fresh checkout resumes from the rows published in bench/results/robots/
         published = REPO / "bench" / "results" / "robots" / f.name
         if not f.exists() and published.exists() and not args.fresh:
