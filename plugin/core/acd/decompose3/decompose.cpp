@@ -470,7 +470,7 @@ private:
 			}
 			t.score = std::max(a, b);
 			t.sum   = a + b;
-			t.need  = needs(a, *t.measures[0]) + needs(b, *t.measures[1]);
+			t.need  = needs(a) + needs(b);
 			t.ok    = true;
 		}
 		catch (const Error&) {   // a part with no volume
@@ -495,19 +495,6 @@ private:
 	// The parts a half of concavity c is estimated to need: one within tau; beyond it at least two,
 	// and one more for each doubling of c (a cut roughly halves what it resolves).
 	double needs(double c) const { return c <= opt.tau ? 1 : 2 + std::log2(c / opt.tau); }
-
-	// And at least one part more than it has bridges with a notch deeper than tau below them: each
-	// such pocket is cut at least once (never less than needs(c), so need_beat's bound still holds).
-	double needs(double c, const Measured& ms) const
-	{
-		if (c <= opt.tau) return 1;
-		std::vector<int> deep;
-		for (size_t v = 0; v < ms.rep.vertex_concavity.size(); ++v)
-			if (ms.rep.vertex_concavity[v] > opt.tau && ms.rep.vertex_bridge[v] >= 0) deep.push_back(ms.rep.vertex_bridge[v]);
-		std::sort(deep.begin(), deep.end());
-		const double pockets = (double) (std::unique(deep.begin(), deep.end()) - deep.begin());
-		return std::max(needs(c), 1 + pockets);
-	}
 
 	// A plane beats the bisector's need n0 only if its own is below n0 - kNeedMargin; as either half
 	// needs at least one part, a half measured at this concavity or more already rules it out.
