@@ -8,6 +8,7 @@
 #include <CGAL/Polygon_mesh_processing/repair_degeneracies.h>
 #include <CGAL/Surface_mesh.h>
 #include <CGAL/Constrained_Delaunay_triangulation_2.h>
+#include <CGAL/Constrained_triangulation_plus_2.h>
 #include <CGAL/Triangulation_vertex_base_with_info_2.h>
 #include <CGAL/centroid.h>
 
@@ -34,7 +35,8 @@ struct Where
 using Vb  = CGAL::Triangulation_vertex_base_with_info_2<Where, K>;
 using Fb  = CGAL::Constrained_triangulation_face_base_2<K>;
 using TDS = CGAL::Triangulation_data_structure_2<Vb, Fb>;
-using CDT = CGAL::Constrained_Delaunay_triangulation_2<K, TDS, CGAL::Exact_intersections_tag>;
+// The "plus" hierarchy names the input edges each triangulation edge lies on (its side's boundary).
+using CDT = CGAL::Constrained_triangulation_plus_2<CGAL::Constrained_Delaunay_triangulation_2<K, TDS, CGAL::Exact_intersections_tag>>;
 
 // A plane vertex's name once the copies within eps of it are one (`alias`: copy -> kept vertex).
 int renamed(int v, const std::map<int, int>& alias)
@@ -69,8 +71,12 @@ public:
 		const std::vector<int> on = faces_on(faces);
 		if (on.empty()) return;
 		snap(on, faces);
-		triangulate(on, faces);
-		std::vector<Face> kept = covered_once(on, faces);
+		insert_corners(on, faces);
+		std::vector<Face> kept;
+		if (!by_boundaries(on, faces, kept)) {
+			constrain_edges();
+			kept = covered_once(on, faces);
+		}
 		for (int f : on) faces[f].dropped = true;
 		faces.insert(faces.end(), kept.begin(), kept.end());
 	}
@@ -115,8 +121,8 @@ private:
 				}
 	}
 
-	// Every edge of the faces on the plane a constraint; crossings become vertices (exact).
-	void triangulate(const std::vector<int>& on, const std::vector<Face>& faces)
+	// The faces' corners as the triangulation's vertices (`corners`).
+	void insert_corners(const std::vector<int>& on, const std::vector<Face>& faces)
 	{
 		std::map<int, CDT::Vertex_handle> at;
 		for (int f : on) {
@@ -133,9 +139,93 @@ private:
 			}
 			corners.push_back(c);
 		}
+	}
+
+	// Every edge of the faces on the plane a constraint; crossings become vertices (exact).
+	void constrain_edges()
+	{
 		for (const Corners& c : corners)
 			for (int k = 0; k < 3; ++k)
 				if (c[k] != c[(k + 1) % 3]) cdt.insert_constraint(c[k], c[(k + 1) % 3]);
+	}
+
+	// Each side's faces on the plane one region, turned one way: only the regions' boundaries are
+	// constraints, and a triangle's sides are counted by crossing them from outside. The two sides'
+	// own triangulations of one cap (fans from different corners) would cross each other at up to
+	// quadratically many points, each an exact construction. False where a side's faces are no such
+	// region (turned both ways, an edge used more than twice or twice in one direction, counts that
+	// disagree): covered_once then decides face by face.
+	bool by_boundaries(const std::vector<int>& on, const std::vector<Face>& faces, std::vector<Face>& kept)
+	{
+		int                                         turn[2] = {0, 0};   // CGAL::Orientation of each side's faces
+		std::map<std::pair<CDT::Vertex_handle, CDT::Vertex_handle>, int> uses[2];   // directed edge -> uses
+		for (size_t i = 0; i < on.size(); ++i) {
+			const Corners& c = corners[i];
+			const int      s = faces[on[i]].from;
+			const int      o = CGAL::orientation(c[0]->point(), c[1]->point(), c[2]->point());
+			if (o != CGAL::COLLINEAR) {
+				if (turn[s] != 0 && turn[s] != o) return false;
+				turn[s] = o;
+			}
+			for (int k = 0; k < 3; ++k)
+				if (c[k] != c[(k + 1) % 3] && ++uses[s][{c[k], c[(k + 1) % 3]}] > 1) return false;
+		}
+		std::vector<std::pair<CDT::Vertex_handle, CDT::Vertex_handle>> edges;   // first use order
+		std::map<std::pair<CDT::Vertex_handle, CDT::Vertex_handle>, int> sides;
+		for (size_t i = 0; i < on.size(); ++i) {
+			const int s = faces[on[i]].from;
+			for (int k = 0; k < 3; ++k) {
+				const CDT::Vertex_handle a = corners[i][k], b = corners[i][(k + 1) % 3];
+				if (a == b || uses[s].count({b, a})) continue;   // inside the side's region
+				const auto key = std::minmax(a, b);
+				if (!sides.count(key)) edges.push_back(key);
+				sides[key] ^= 1 << s;
+			}
+		}
+		std::map<std::size_t, int> side_of;   // constraint -> the sides it bounds
+		for (const auto& e : edges)
+			if (sides[e]) side_of[cdt.insert_constraint(e.first, e.second).index()] = sides[e];
+		std::map<CDT::Face_handle, int> in;   // triangle -> the sides covering it
+		if (!count_sides(side_of, in)) return false;
+		for (const CDT::Face_handle fh : cdt.finite_face_handles()) {
+			const int m = in[fh];
+			if (m != 1 && m != 2) continue;
+			Face f;
+			f.from = m == 2;
+			for (int k = 0; k < 3; ++k) f.t[turn[f.from] == CGAL::CLOCKWISE ? 2 - k : k] = vertex(fh->vertex(k));
+			if (!needle(f.t)) kept.push_back(f);
+		}
+		return true;
+	}
+
+	// The sides covering each triangle, from outside (none) across the boundaries; false where two
+	// ways to a triangle disagree.
+	bool count_sides(const std::map<std::size_t, int>& side_of, std::map<CDT::Face_handle, int>& in) const
+	{
+		const auto crossed = [&](CDT::Face_handle f, int k) {
+			int m = 0;
+			if (!f->is_constrained(k)) return m;
+			const CDT::Vertex_handle a = f->vertex(cdt.cw(k)), b = f->vertex(cdt.ccw(k));
+			for (auto c = cdt.contexts_begin(a, b); c != cdt.contexts_end(a, b); ++c) {
+				const auto it = side_of.find(c->id().index());
+				if (it != side_of.end()) m ^= it->second;
+			}
+			return m;
+		};
+		std::vector<CDT::Face_handle> todo{cdt.infinite_face()};
+		in[cdt.infinite_face()] = 0;
+		while (!todo.empty()) {
+			const CDT::Face_handle f = todo.back();
+			todo.pop_back();
+			for (int k = 0; k < 3; ++k) {
+				const CDT::Face_handle g = f->neighbor(k);
+				const int              m = in[f] ^ crossed(f, k);
+				const auto [it, fresh]   = in.emplace(g, m);
+				if (fresh) todo.push_back(g);
+				else if (it->second != m) return false;
+			}
+		}
+		return true;
 	}
 
 	// The triangles exactly one face covers, oriented as that face. Each face's triangles are found
