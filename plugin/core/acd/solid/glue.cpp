@@ -170,21 +170,25 @@ private:
 			for (int k = 0; k < 3; ++k)
 				if (c[k] != c[(k + 1) % 3] && ++uses[s][{c[k], c[(k + 1) % 3]}] > 1) return false;
 		}
-		std::vector<std::pair<CDT::Vertex_handle, CDT::Vertex_handle>> edges;   // first use order
-		std::map<std::pair<CDT::Vertex_handle, CDT::Vertex_handle>, int> sides;
+		// Each boundary edge once, as first used: keyed by the solid's vertex ids, not the handles'
+		// addresses, whose order depends on the allocator (and so on the thread).
+		std::vector<std::pair<CDT::Vertex_handle, CDT::Vertex_handle>> edges;
+		std::map<std::pair<int, int>, int>                             sides;
 		for (size_t i = 0; i < on.size(); ++i) {
 			const int s = faces[on[i]].from;
 			for (int k = 0; k < 3; ++k) {
 				const CDT::Vertex_handle a = corners[i][k], b = corners[i][(k + 1) % 3];
 				if (a == b || uses[s].count({b, a})) continue;   // inside the side's region
-				const auto key = std::minmax(a, b);
-				if (!sides.count(key)) edges.push_back(key);
+				const auto key = std::minmax(a->info().v, b->info().v);
+				if (!sides.count(key)) edges.push_back({a, b});
 				sides[key] ^= 1 << s;
 			}
 		}
 		std::map<std::size_t, int> side_of;   // constraint -> the sides it bounds
-		for (const auto& e : edges)
-			if (sides[e]) side_of[cdt.insert_constraint(e.first, e.second).index()] = sides[e];
+		for (const auto& [a, b] : edges) {
+			const int m = sides[std::minmax(a->info().v, b->info().v)];
+			if (m) side_of[cdt.insert_constraint(a, b).index()] = m;
+		}
 		std::map<CDT::Face_handle, int> in;   // triangle -> the sides covering it
 		if (!count_sides(side_of, in)) return false;
 		for (const CDT::Face_handle fh : cdt.finite_face_handles()) {
