@@ -24,6 +24,16 @@ SplitOutcome split(const TriMesh& m, const Plane& pl)
 	return out;
 }
 
+// The area of the solid's faces whose corners all have coordinate `axis` equal to `at`.
+double area_on(const Solid& u, int axis, double at)
+{
+	double area = 0;
+	for (const Tri& t : u.mesh.F)
+		if (u.mesh.V[t[0]][axis] == at && u.mesh.V[t[1]][axis] == at && u.mesh.V[t[2]][axis] == at)
+			area += 0.5 * (u.mesh.V[t[1]] - u.mesh.V[t[0]]).cross(u.mesh.V[t[2]] - u.mesh.V[t[0]]).norm();
+	return area;
+}
+
 } // namespace
 
 TEST_CASE("glue: two parts whose caps overlap in part become one closed solid of both volumes")
@@ -86,11 +96,7 @@ TEST_CASE("glue: caps triangulated differently on the two sides cross, and still
 	CHECK(u.self_intersections == 0);
 	CHECK_NEAR(u.volume, 3.0, 1e-12);
 	// The exposed part of b's side (y from 1 to 2) stays, the rest of both sides is gone.
-	double area_on_plane = 0;
-	for (const Tri& t : u.mesh.F)
-		if (u.mesh.V[t[0]].x() == 1 && u.mesh.V[t[1]].x() == 1 && u.mesh.V[t[2]].x() == 1)
-			area_on_plane += 0.5 * (u.mesh.V[t[1]] - u.mesh.V[t[0]]).cross(u.mesh.V[t[2]] - u.mesh.V[t[0]]).norm();
-	CHECK_NEAR(area_on_plane, 1.0, 1e-12);
+	CHECK_NEAR(area_on(u, 0, 1), 1.0, 1e-12);
 }
 
 TEST_CASE("glue: round caps triangulated from different corners cancel, or leave the ring one side covers")
@@ -102,24 +108,17 @@ TEST_CASE("glue: round caps triangulated from different corners cancel, or leave
 	for (int k = 0; k < 40; ++k) turned.push_back(round[(k + 20) % 40]);
 	const TriMesh a   = shapes::extrude(round, 0, 1);
 	const double  vol = signed_volume(a);
-	const auto    on_plane = [](const Solid& u) {
-        double area = 0;
-        for (const Tri& t : u.mesh.F)
-            if (u.mesh.V[t[0]].z() == 1 && u.mesh.V[t[1]].z() == 1 && u.mesh.V[t[2]].z() == 1)
-                area += 0.5 * (u.mesh.V[t[1]] - u.mesh.V[t[0]]).cross(u.mesh.V[t[2]] - u.mesh.V[t[0]]).norm();
-        return area;
-	};
 	const Solid same = make_solid(glue(a, shapes::extrude(turned, 1, 2), {plane({0, 0, 1}, 1)}, 1e-9));
 	CHECK(same.shells == 1);
 	CHECK(same.self_intersections == 0);
 	CHECK_NEAR(same.volume, 2 * vol, 1e-12);
-	CHECK(on_plane(same) == 0);
+	CHECK(area_on(same, 2, 1) == 0);
 	const std::vector<Eigen::Vector2d> square = {{-1.5, -1.5}, {1.5, -1.5}, {1.5, 1.5}, {-1.5, 1.5}};
 	const Solid ring = make_solid(glue(a, shapes::extrude(square, 1, 2), {plane({0, 0, 1}, 1)}, 1e-9));
 	CHECK(ring.shells == 1);
 	CHECK(ring.self_intersections == 0);
 	CHECK_NEAR(ring.volume, vol + 9, 1e-12);
-	CHECK_NEAR(on_plane(ring), 9 - vol, 1e-12);   // the prism is 1 high: its volume is its cap's area
+	CHECK_NEAR(area_on(ring, 2, 1), 9 - vol, 1e-12);   // the prism is 1 high: its volume is its cap's area
 }
 
 // Options cutting `m` at tau = `share` of its size, merging off (the leaves, ready to merge).

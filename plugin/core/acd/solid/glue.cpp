@@ -194,10 +194,7 @@ private:
 		for (const CDT::Face_handle fh : cdt.finite_face_handles()) {
 			const int m = in[fh];
 			if (m != 1 && m != 2) continue;
-			Face f;
-			f.from = m == 2;
-			for (int k = 0; k < 3; ++k) f.t[turn[f.from] == CGAL::CLOCKWISE ? 2 - k : k] = vertex(fh->vertex(k));
-			if (!needle(f.t)) kept.push_back(f);
+			keep(fh, m == 2, turn[m == 2] == CGAL::CLOCKWISE, kept);
 		}
 		return true;
 	}
@@ -263,13 +260,19 @@ private:
 			if (it == cover.end() || it->second.first != 1) continue;
 			const int      i = it->second.second;
 			const Corners& c = corners[i];
-			const bool     turned = CGAL::orientation(c[0]->point(), c[1]->point(), c[2]->point()) == CGAL::CLOCKWISE;
-			Face           f;
-			f.from = faces[on[i]].from;
-			for (int k = 0; k < 3; ++k) f.t[turned ? 2 - k : k] = vertex(fh->vertex(k));
-			if (!needle(f.t)) kept.push_back(f);
+			keep(fh, faces[on[i]].from, CGAL::orientation(c[0]->point(), c[1]->point(), c[2]->point()) == CGAL::CLOCKWISE, kept);
 		}
 		return kept;
+	}
+
+	// Triangle fh as a face of side `from`, turned as that side's face is (`turned`: clockwise in the
+	// plane's frame); slivers are left out.
+	void keep(CDT::Face_handle fh, int from, bool turned, std::vector<Face>& kept)
+	{
+		Face f;
+		f.from = from;
+		for (int k = 0; k < 3; ++k) f.t[turned ? 2 - k : k] = vertex(fh->vertex(k));
+		if (!needle(f.t)) kept.push_back(f);
 	}
 
 	// Triangle fh's centre lies inside face c (the triangulation's triangles are wholly in or out).
