@@ -121,6 +121,61 @@ TEST_CASE("glue: round caps triangulated from different corners cancel, or leave
 	CHECK_NEAR(area_on(ring, 2, 1), 9 - vol, 1e-12);   // the prism is 1 high: its volume is its cap's area
 }
 
+namespace {
+
+// Face (p, q, r) of `m` split at the middle of its edge p -> q into two, and the edge's other face
+// (q, p, s) left as it is, closed by a face with no area: p, q and the middle on one line.
+void split_with_needle(TriMesh& m, int p, int q)
+{
+	for (Tri& t : m.F)
+		for (int k = 0; k < 3; ++k)
+			if (t[k] == p && t[(k + 1) % 3] == q) {
+				const int r = t[(k + 2) % 3], mid = (int) m.V.size();
+				m.V.push_back(0.5 * (m.V[p] + m.V[q]));
+				t = {p, mid, r};
+				m.F.push_back({mid, q, r});
+				m.F.push_back({p, q, mid});
+				return;
+			}
+	FAIL("no face has the edge");
+}
+
+} // namespace
+
+TEST_CASE("glue: a cap face with no area, or one side's faces on the plane turned both ways, still close exactly")
+{
+	// The 40-gon prism's top cap holds a face with its corners on one line (a cut leaves such faces
+	// where it closes a T-junction); the other prism's cap is fanned from the opposite corner.
+	std::vector<Eigen::Vector2d> round, turned;
+	for (int k = 0; k < 40; ++k) round.emplace_back(std::cos(k * M_PI / 20), std::sin(k * M_PI / 20));
+	for (int k = 0; k < 40; ++k) turned.push_back(round[(k + 20) % 40]);
+	TriMesh      a   = shapes::extrude(round, 0, 1);
+	const double vol = signed_volume(a);
+	int p = -1, q = -1;   // an edge inside the top cap (vertices 40 to 79, not neighbours on the rim)
+	for (const Tri& t : a.F)
+		for (int k = 0; k < 3 && p < 0; ++k) {
+			const int i = t[k], j = t[(k + 1) % 3];
+			if (i >= 40 && j >= 40 && (j - i + 40) % 40 != 1 && (i - j + 40) % 40 != 1) p = i, q = j;
+		}
+	REQUIRE(p >= 0);
+	split_with_needle(a, p, q);
+	const Solid same = make_solid(glue(a, shapes::extrude(turned, 1, 2), {plane({0, 0, 1}, 1)}, 1e-9));
+	CHECK(same.shells == 1);
+	CHECK(same.self_intersections == 0);
+	CHECK_NEAR(same.volume, 2 * vol, 1e-12);
+	CHECK(area_on(same, 2, 1) == 0);
+
+	// One side two boxes, the first below z = 1 (its top on the plane, turned up), the second above
+	// it elsewhere (its bottom on the plane, turned down); the other side a box on the first.
+	TriMesh two = shapes::box({0, 0, 0}, {1, 1, 1});
+	append(two, shapes::box({2, 0, 1}, {3, 1, 2}));
+	const Solid u = make_solid(glue(two, shapes::box({0, 0, 1}, {1, 1, 2}), {plane({0, 0, 1}, 1)}, 1e-9));
+	CHECK(u.shells == 2);
+	CHECK(u.self_intersections == 0);
+	CHECK_NEAR(u.volume, 3.0, 1e-12);
+	CHECK_NEAR(area_on(u, 2, 1), 1.0, 1e-12);   // the second box's bottom, all that stays on the plane
+}
+
 // Options cutting `m` at tau = `share` of its size, merging off (the leaves, ready to merge).
 static DecomposeOptions unmerged(const TriMesh& m, double share)
 {

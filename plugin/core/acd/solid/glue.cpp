@@ -149,67 +149,65 @@ private:
 				if (c[k] != c[(k + 1) % 3]) cdt.insert_constraint(c[k], c[(k + 1) % 3]);
 	}
 
-	// Each side's faces on the plane one region, turned one way: only the regions' boundaries are
-	// constraints, and a triangle's sides are counted by crossing them from outside. The two sides'
-	// own triangulations of one cap (fans from different corners) would cross each other at up to
-	// quadratically many points, each an exact construction. False where a side's faces are no such
-	// region (turned both ways, an edge used more than twice or twice in one direction, counts that
-	// disagree): covered_once then decides face by face.
+	// Each side's faces on the plane turned up and those turned down, each class one region: only the
+	// regions' boundaries are constraints, and the classes covering a triangle are counted by crossing
+	// them from outside. The two sides' own triangulations of one cap (fans from different corners)
+	// would cross each other at up to quadratically many points, each an exact construction. False
+	// where a class is no such region (an edge used twice in one direction, counts that disagree):
+	// covered_once then decides face by face. A face whose corners lie on one line covers nothing and
+	// is left out: the edges around it then bound the region along both its sides, and crossing it
+	// counts its class twice, that is not at all.
 	bool by_boundaries(const std::vector<int>& on, const std::vector<Face>& faces, std::vector<Face>& kept)
 	{
-		int                                         turn[2] = {0, 0};   // CGAL::Orientation of each side's faces
-		std::map<std::pair<CDT::Vertex_handle, CDT::Vertex_handle>, int> uses[2];   // directed edge -> uses
+		std::vector<int> cls(on.size(), -1);   // 2 * side + (turned clockwise); -1: on one line
+		std::map<std::pair<CDT::Vertex_handle, CDT::Vertex_handle>, int> uses[4];   // directed edge -> uses
 		for (size_t i = 0; i < on.size(); ++i) {
 			const Corners& c = corners[i];
-			const int      s = faces[on[i]].from;
 			const int      o = CGAL::orientation(c[0]->point(), c[1]->point(), c[2]->point());
-			if (o != CGAL::COLLINEAR) {
-				if (turn[s] != 0 && turn[s] != o) return false;
-				turn[s] = o;
-			}
+			if (o == CGAL::COLLINEAR) continue;
+			cls[i] = 2 * faces[on[i]].from + (o == CGAL::CLOCKWISE);
 			for (int k = 0; k < 3; ++k)
-				if (c[k] != c[(k + 1) % 3] && ++uses[s][{c[k], c[(k + 1) % 3]}] > 1) return false;
+				if (c[k] != c[(k + 1) % 3] && ++uses[cls[i]][{c[k], c[(k + 1) % 3]}] > 1) return false;
 		}
 		// Each boundary edge once, as first used: keyed by the solid's vertex ids, not the handles'
 		// addresses, whose order depends on the allocator (and so on the thread).
 		std::vector<std::pair<CDT::Vertex_handle, CDT::Vertex_handle>> edges;
-		std::map<std::pair<int, int>, int>                             sides;
-		for (size_t i = 0; i < on.size(); ++i) {
-			const int s = faces[on[i]].from;
-			for (int k = 0; k < 3; ++k) {
+		std::map<std::pair<int, int>, int>                             classes;
+		for (size_t i = 0; i < on.size(); ++i)
+			for (int k = 0; k < 3 && cls[i] >= 0; ++k) {
 				const CDT::Vertex_handle a = corners[i][k], b = corners[i][(k + 1) % 3];
-				if (a == b || uses[s].count({b, a})) continue;   // inside the side's region
+				if (a == b || uses[cls[i]].count({b, a})) continue;   // inside the class's region
 				const auto key = std::minmax(a->info().v, b->info().v);
-				if (!sides.count(key)) edges.push_back({a, b});
-				sides[key] ^= 1 << s;
+				if (!classes.count(key)) edges.push_back({a, b});
+				classes[key] ^= 1 << cls[i];
 			}
-		}
-		std::map<std::size_t, int> side_of;   // constraint -> the sides it bounds
+		std::map<std::size_t, int> bounds;   // constraint -> the classes it bounds
 		for (const auto& [a, b] : edges) {
-			const int m = sides[std::minmax(a->info().v, b->info().v)];
-			if (m) side_of[cdt.insert_constraint(a, b).index()] = m;
+			const int m = classes[std::minmax(a->info().v, b->info().v)];
+			if (m) bounds[cdt.insert_constraint(a, b).index()] = m;
 		}
-		std::map<CDT::Face_handle, int> in;   // triangle -> the sides covering it
-		if (!count_sides(side_of, in)) return false;
+		std::map<CDT::Face_handle, int> in;   // triangle -> the classes covering it
+		if (!count_sides(bounds, in)) return false;
 		for (const CDT::Face_handle fh : cdt.finite_face_handles()) {
 			const int m = in[fh];
-			if (m != 1 && m != 2) continue;
-			keep(fh, m == 2, turn[m == 2] == CGAL::CLOCKWISE, kept);
+			if (m == 0 || (m & (m - 1))) continue;   // none, or more than one
+			const int c = m == 1 ? 0 : m == 2 ? 1 : m == 4 ? 2 : 3;
+			keep(fh, c / 2, c % 2 == 1, kept);
 		}
 		return true;
 	}
 
-	// The sides covering each triangle, from outside (none) across the boundaries; false where two
-	// ways to a triangle disagree.
-	bool count_sides(const std::map<std::size_t, int>& side_of, std::map<CDT::Face_handle, int>& in) const
+	// The classes covering each triangle (by_boundaries), from outside (none) across the boundaries;
+	// false where two ways to a triangle disagree.
+	bool count_sides(const std::map<std::size_t, int>& bounds, std::map<CDT::Face_handle, int>& in) const
 	{
 		const auto crossed = [&](CDT::Face_handle f, int k) {
 			int m = 0;
 			if (!f->is_constrained(k)) return m;
 			const CDT::Vertex_handle a = f->vertex(cdt.cw(k)), b = f->vertex(cdt.ccw(k));
 			for (auto c = cdt.contexts_begin(a, b); c != cdt.contexts_end(a, b); ++c) {
-				const auto it = side_of.find(c->id().index());
-				if (it != side_of.end()) m ^= it->second;
+				const auto it = bounds.find(c->id().index());
+				if (it != bounds.end()) m ^= it->second;
 			}
 			return m;
 		};
