@@ -34,6 +34,18 @@ double area_on(const Solid& u, int axis, double at)
 	return area;
 }
 
+// A 40-gon on the unit circle, its corners listed from corner `first` on (so that an ear-clipped cap
+// of it is triangulated from there).
+std::vector<Eigen::Vector2d> forty_gon(int first)
+{
+	std::vector<Eigen::Vector2d> out;
+	for (int k = 0; k < 40; ++k) {
+		const int c = (first + k) % 40;
+		out.emplace_back(std::cos(c * M_PI / 20), std::sin(c * M_PI / 20));
+	}
+	return out;
+}
+
 } // namespace
 
 TEST_CASE("glue: two parts whose caps overlap in part become one closed solid of both volumes")
@@ -103,9 +115,7 @@ TEST_CASE("glue: round caps triangulated from different corners cancel, or leave
 {
 	// Two 40-gon prisms meeting at z = 1, their caps fanned from opposite corners (each side's
 	// triangulation crosses the other's some 400 times); then a square prism over the 40-gon.
-	std::vector<Eigen::Vector2d> round, turned;
-	for (int k = 0; k < 40; ++k) round.emplace_back(std::cos(k * M_PI / 20), std::sin(k * M_PI / 20));
-	for (int k = 0; k < 40; ++k) turned.push_back(round[(k + 20) % 40]);
+	const std::vector<Eigen::Vector2d> round = forty_gon(0), turned = forty_gon(20);
 	const TriMesh a   = shapes::extrude(round, 0, 1);
 	const double  vol = signed_volume(a);
 	const Solid same = make_solid(glue(a, shapes::extrude(turned, 1, 2), {plane({0, 0, 1}, 1)}, 1e-9));
@@ -146,9 +156,7 @@ TEST_CASE("glue: a cap face with no area, or one side's faces on the plane turne
 {
 	// The 40-gon prism's top cap holds a face with its corners on one line (a cut leaves such faces
 	// where it closes a T-junction); the other prism's cap is fanned from the opposite corner.
-	std::vector<Eigen::Vector2d> round, turned;
-	for (int k = 0; k < 40; ++k) round.emplace_back(std::cos(k * M_PI / 20), std::sin(k * M_PI / 20));
-	for (int k = 0; k < 40; ++k) turned.push_back(round[(k + 20) % 40]);
+	const std::vector<Eigen::Vector2d> round = forty_gon(0), turned = forty_gon(20);
 	TriMesh      a   = shapes::extrude(round, 0, 1);
 	const double vol = signed_volume(a);
 	int p = -1, q = -1;   // an edge inside the top cap (vertices 40 to 79, not neighbours on the rim)
