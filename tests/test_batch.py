@@ -124,6 +124,12 @@ def test_batch_and_robots_share_one_cache(meshes, tmp_path):
     assert len(files) > 20
     assert all(filecmp.cmp(tmp_path / "a" / f, tmp_path / "b" / f, shallow=False) for f in files)
     check_outputs(in_dir, tmp_path / "b", again, shapes)
+    # Without the cache the layers go from the filter to the export in memory: the same bytes, nothing stored.
+    stored = sorted(cache.iterdir())
+    fresh = batch(in_dir, tmp_path / "n", "--workers", "2", "--no-cache", cache=cache)
+    assert all(fresh[n]["cached"] == "False" and fresh[n]["status"] == "ok" for n in shapes)
+    assert sorted(cache.iterdir()) == stored
+    assert all(filecmp.cmp(tmp_path / "a" / f, tmp_path / "n" / f, shallow=False) for f in files)
 
     # A robot of one link whose collision is l_prism.obj, at the batch's options.
     robot_dir = tmp_path / "robot"
@@ -167,6 +173,9 @@ def test_batch_saves_trees_for_coarser_levels(meshes, tmp_path):
     rows = batch(in_dir, tmp_path / "out", "--workers", "2", "--save-tree")
     tree = tmp_path / "out" / rows["sub/torus.obj"]["output"] / "tree.json"
     assert not list((tmp_path / "out").rglob(".tree-*"))
+    # The cache's copy and the tree written straight to the output (no cache) hold the same bytes.
+    fresh = batch(in_dir, tmp_path / "fresh", "--workers", "2", "--save-tree", "--no-cache")
+    assert (tmp_path / "fresh" / fresh["sub/torus.obj"]["output"] / "tree.json").read_bytes() == tree.read_bytes()
     ms = pymeshlab.MeshSet()
     res, ids = pymeshlab_acd.level_of_detail(ms, tree, tau=20)
     assert 1 <= len(ids) < int(rows["sub/torus.obj"]["parts"])

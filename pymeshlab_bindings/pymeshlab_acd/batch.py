@@ -65,12 +65,13 @@ def find_meshes(in_dir, *skip):
 def decompose_file(src, out_dir, opts):
     """Decompose one mesh file and export it to out_dir; returns the summary record (raises on failure).
     The decomposition comes from the shared cache (hull_cache) when the same bytes were decomposed under
-    the same options before, by a batch or a robot; it is stored there otherwise."""
+    the same options before, by a batch or a robot; it is stored there otherwise. With the cache off, nothing
+    is stored: the parts and hulls go from the filter to the export in memory."""
     import numpy as np
     import pymeshlab
     from . import load
     from .export import merged_layers, export_decomposition, mass_properties
-    from .hull_cache import cache_folder, entry_layers, hull_mesh
+    from .hull_cache import cache_folder, entry_layers, fresh_layers, hull_mesh
 
     load()
     t0 = time.perf_counter()
@@ -78,23 +79,26 @@ def decompose_file(src, out_dir, opts):
     # wrapped, and a solid that crosses itself wrapped when its parts as given fall short of tau).
     filter_opts = {k: opts[k] for k in options.DEFAULTS if k != "threads"}
     cache_dir = cache_folder(opts["cache"], opts["cache_dir"])
-    entry, res, cached, _ = hull_mesh(src, filter_opts, cache_dir, opts["threads"])
-    try:
-        ms = pymeshlab.MeshSet()
-        ms.load_new_mesh(str(src))
-        if ms.mesh_number() > 1:   # as the decomposition saw it
-            ms.generate_by_merging_visible_meshes()
-        source = ms.current_mesh_id()
+    if cache_dir is None:   # nothing kept: the layers stay in memory, the tree goes only where it is asked for
+        tree_file = pathlib.Path(out_dir) / "tree.json" if opts["save_tree"] else None
+        if tree_file:
+            tree_file.parent.mkdir(parents=True, exist_ok=True)
+        res, layers = fresh_layers(src, filter_opts, opts["threads"], tree_file)
+        cached = False
+    else:
+        entry, res, cached, _ = hull_mesh(src, filter_opts, cache_dir, opts["threads"])
         layers = entry_layers(entry, res)
-        ids = []
-        for label, mesh in layers[0] + layers[1]:
-            ms.add_mesh(mesh, mesh_name=label)
-            ids.append(ms.current_mesh_id())
         if opts["save_tree"]:   # for coarser levels later
             shutil.copyfile(entry / "tree.json", pathlib.Path(out_dir) / "tree.json")
-    finally:
-        if cache_dir is None:
-            shutil.rmtree(entry, ignore_errors=True)
+    ms = pymeshlab.MeshSet()
+    ms.load_new_mesh(str(src))
+    if ms.mesh_number() > 1:   # as the decomposition saw it
+        ms.generate_by_merging_visible_meshes()
+    source = ms.current_mesh_id()
+    ids = []
+    for label, mesh in layers[0] + layers[1]:
+        ms.add_mesh(mesh, mesh_name=label)
+        ids.append(ms.current_mesh_id())
     parts, hulls = ids[:len(layers[0])], ids[len(layers[0]):]
     vol = mass_properties(*merged_layers(ms, parts))[0]      # the solid decomposed (the wrap, if wrapped)
     hull_vol = sum(mass_properties(ms.mesh(i).vertex_matrix(), ms.mesh(i).face_matrix())[0] for i in hulls)

@@ -47,12 +47,13 @@ def merged_layers(ms, ids):
 
 def write_obj_objects(path, meshes, prefix):
     """One OBJ holding every (V, F) mesh as its own object (`o <prefix>_<k>`), as CoACD and V-HACD write hulls."""
+    # One %-format per block, not one per line: a scan's parts hold 10^5 to 10^6 lines.
     with open(path, "w") as f:
         base = 1
         for k, (V, F) in enumerate(meshes):
             f.write(f"o {prefix}_{k}\n")
-            f.writelines(f"v {x:.17g} {y:.17g} {z:.17g}\n" for x, y, z in V)
-            f.writelines(f"f {a + base} {b + base} {c + base}\n" for a, b, c in F)
+            f.write("v %.17g %.17g %.17g\n" * len(V) % tuple(np.asarray(V, float).ravel().tolist()))
+            f.write("f %d %d %d\n" * len(F) % tuple((np.asarray(F, np.int64) + base).ravel().tolist()))
             base += len(V)
 
 

@@ -81,8 +81,10 @@ def hull_mesh(path, opts, cache_dir=None, threads=0):
     return entry, result, False, key
 
 
-def _decompose_mesh(path, opts, folder):
-    """Decompose the mesh file into the entry files under `folder`; returns the result written there."""
+def _run_filter(path, opts, tree_file):
+    """Decompose the mesh file with the hulls as layers (the tree written to `tree_file` when one is given).
+    Returns (result, arrays): result with the layer names and part colours, arrays = (parts, hulls), each a
+    list of (V, F) in the filter's layer order."""
     import pymeshlab
     from . import decompose, load
     load()
@@ -91,44 +93,60 @@ def _decompose_mesh(path, opts, folder):
     if ms.mesh_number() > 1:   # a file of several meshes (COLLADA scenes): one mesh
         ms.generate_by_merging_visible_meshes()
     t0 = time.perf_counter()
-    res, ids = decompose(ms, tree_file=str(folder / "tree.json"), output_hulls=True, **opts)
-    tree = res.pop("tree")
+    res, ids = decompose(ms, with_tree=bool(tree_file), tree_file=str(tree_file or ""), output_hulls=True, **opts)
+    tree = res.pop("tree", {})
     hulls = [i for i in ids if ms.mesh(i).label().startswith("acd_hull_")]
     parts = [i for i in ids if i not in hulls]
-    for k, i in enumerate(hulls):
-        write_obj_objects(folder / f"hull_{k}.obj", [(ms.mesh(i).vertex_matrix(), ms.mesh(i).face_matrix())], "hull")
-    write_obj_objects(folder / "parts.obj", [(ms.mesh(i).vertex_matrix(), ms.mesh(i).face_matrix()) for i in parts], "part")
     res.update(seconds=time.perf_counter() - t0, collision=tree.get("collision", {}),
                hull_labels=[ms.mesh(i).label() for i in hulls], part_labels=[ms.mesh(i).label() for i in parts],
                part_colors=[ms.mesh(i).vertex_color_matrix()[0].tolist() for i in parts])   # one colour per part
+    arrays = tuple([(ms.mesh(i).vertex_matrix(), ms.mesh(i).face_matrix()) for i in ids] for ids in (parts, hulls))
+    return res, arrays
+
+
+def _decompose_mesh(path, opts, folder):
+    """Decompose the mesh file into the entry files under `folder`; returns the result written there."""
+    res, (parts, hulls) = _run_filter(path, opts, folder / "tree.json")
+    for k, mesh in enumerate(hulls):
+        write_obj_objects(folder / f"hull_{k}.obj", [mesh], "hull")
+    write_obj_objects(folder / "parts.obj", parts, "part")
     (folder / "result.json").write_text(json.dumps(res, indent=1, default=float))
     return res
 
 
+def fresh_layers(path, opts, threads=0, tree_file=None):
+    """The decomposition of the mesh file under `opts`, computed now and kept in memory (no cache entry is
+    written; the tree only to `tree_file`, when given). Returns (result, layers) as entry_layers gives them."""
+    res, arrays = _run_filter(path, dict(opts, threads=threads), tree_file)
+    return res, _layers(res, *arrays)
+
+
 def read_objects(path):
-    """(V, F) per object of an OBJ written by write_obj_objects."""
-    out, V, F, base = [], [], [], 1
-    for line in pathlib.Path(path).read_text().splitlines():
-        if line.startswith("o "):
-            if V:
-                out.append((np.array(V, float), np.array(F, np.int64) - base))
-                base += len(V)
-            V, F = [], []
-        elif line.startswith("v "):
-            V.append([float(x) for x in line.split()[1:4]])
-        elif line.startswith("f "):
-            F.append([int(x.split("/")[0]) for x in line.split()[1:4]])
-    if V:
-        out.append((np.array(V, float), np.array(F, np.int64) - base))
+    """(V, F) per object of an OBJ written by write_obj_objects (`o` lines, then each object's `v` lines
+    and triangle `f` lines; `f a/b/c` corners read as a). Numbers are parsed a block at a time."""
+    out, base = [], 1
+    for block in ("\n" + pathlib.Path(path).read_text()).split("\no ")[1:]:
+        lines = block.split("\n")[1:]
+        v = " ".join(line[2:] for line in lines if line.startswith("v "))
+        f = " ".join(line[2:] for line in lines if line.startswith("f "))
+        if "/" in f:
+            f = " ".join(t.split("/")[0] for t in f.split())
+        V = np.array(v.split(), float).reshape(-1, 3)
+        out.append((V, np.array(f.split(), np.int64).reshape(-1, 3) - base))
+        base += len(V)
     return out
 
 
 def entry_layers(folder, result):
     """An entry's parts and hulls as pymeshlab meshes with their layer names, [(label, Mesh)] each, in the
     filter's layer order and with the parts' colours."""
-    import pymeshlab
     parts = read_objects(folder / "parts.obj")
     hulls = [read_objects(folder / f"hull_{k}.obj")[0] for k in range(len(result["hull_labels"]))]
+    return _layers(result, parts, hulls)
+
+
+def _layers(result, parts, hulls):
+    import pymeshlab
     return ([(n, pymeshlab.Mesh(V, F, v_color_matrix=np.tile(c, (len(V), 1))))
              for n, c, (V, F) in zip(result["part_labels"], result["part_colors"], parts)],
             [(n, pymeshlab.Mesh(V, F)) for n, (V, F) in zip(result["hull_labels"], hulls)])

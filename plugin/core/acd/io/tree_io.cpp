@@ -1,5 +1,6 @@
 #include "acd/io/tree_io.h"
 #include "acd/hull/hull.h"
+#include "acd/mesh/parallel.h"
 
 #include <nlohmann/json.hpp>
 
@@ -33,7 +34,39 @@ TriMesh mesh_from(const json& o)
 	return m;
 }
 
-json node_json(const Node& n, int id, bool geometry)
+// Each node's hull as a mesh (geometry trees). A leaf's and a merged part's from its mesh, in parallel; a cut
+// node's from its children's hull vertices: its parts hold its every point, so the hull is the hull of
+// theirs, built from a few hundred points instead of every vertex of a large solid.
+std::vector<TriMesh> node_hulls(const Decomposition& D)
+{
+	const auto direct = [&](size_t i) {
+		try {
+			return ConvexHull(D.nodes[i].mesh.V).mesh();
+		} catch (const Error&) {   // a node spanning no volume has no hull
+			return TriMesh();
+		}
+	};
+	std::vector<TriMesh> hull(D.nodes.size());
+	parallel_for(D.nodes.size(), [&](size_t i) {
+		const Node& n = D.nodes[i];
+		if ((n.child[0] < 0 || !n.merged.empty()) && !n.mesh.F.empty()) hull[i] = direct(i);
+	});
+	for (size_t i = D.nodes.size(); i-- > 0;) {   // children come after their parent
+		const Node& n = D.nodes[i];
+		if (n.child[0] < 0 || !n.merged.empty() || n.mesh.F.empty()) continue;
+		const TriMesh &a = hull[n.child[0]], &b = hull[n.child[1]];
+		if (a.V.empty() || b.V.empty()) {
+			hull[i] = direct(i);
+			continue;
+		}
+		std::vector<Vec3> points = a.V;
+		points.insert(points.end(), b.V.begin(), b.V.end());
+		hull[i] = ConvexHull(points).mesh();
+	}
+	return hull;
+}
+
+json node_json(const Node& n, int id, bool geometry, const TriMesh& hull)
 {
 	json o = {{"id", id},
 	          {"path", n.path},
@@ -55,7 +88,7 @@ json node_json(const Node& n, int id, bool geometry)
 	if (n.hull_certified) o["hull_certified"] = true;   // within tau by its hull, its notches deeper
 	if (n.part >= 0) o["part"] = n.part;
 	if (geometry && !n.mesh.F.empty()) {
-		o["hull"] = mesh_json(ConvexHull(n.mesh.V).mesh());
+		if (!hull.F.empty()) o["hull"] = mesh_json(hull);
 		if (n.leaf() || !n.merged.empty()) o["mesh"] = mesh_json(n.mesh);
 	}
 	return o;
@@ -103,8 +136,9 @@ static json hulls_json(const CollisionHulls& c)
 
 std::string tree_to_json(const Decomposition& D, bool geometry, const CollisionHulls* hulls)
 {
-	json nodes = json::array();
-	for (size_t i = 0; i < D.nodes.size(); ++i) nodes.push_back(node_json(D.nodes[i], (int) i, geometry));
+	json                       nodes = json::array();
+	const std::vector<TriMesh> hull  = geometry ? node_hulls(D) : std::vector<TriMesh>(D.nodes.size());
+	for (size_t i = 0; i < D.nodes.size(); ++i) nodes.push_back(node_json(D.nodes[i], (int) i, geometry, hull[i]));
 	json root = {{"schema", kTreeSchema},
 	                   {"dimension", 3},
 	                   {"tau", D.tau},
