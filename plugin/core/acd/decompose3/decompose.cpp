@@ -18,6 +18,8 @@
 #include <CGAL/Simple_cartesian.h>
 
 #include <algorithm>
+#include <array>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -32,6 +34,7 @@
 #include <sstream>
 #include <unordered_map>
 #include <unordered_set>
+#include <thread>
 
 namespace acd {
 
@@ -742,33 +745,51 @@ bool better(const Decomposition& a, const Decomposition& b)
 namespace {
 
 // The search under each pick rule (cut_search = thorough; fast: the first alone), the better kept. A
-// greedy search's choices compound, so which rule leaves fewer parts shows only at the end; the
+// greedy search's choices compound, so which rule leaves fewer parts shows only at the end. The two
+// searches run side by side, each free to take the threads the other leaves idle (one large part's
+// measure, a merge's last unions), and share what both measure: a measure one is making the other waits
+// for. Reports go through the calling thread (the host's callback may touch its GUI), each search's
+// progress half of the whole; a cancel there reaches both at their next report. With one thread the
 // second search runs in the time the first left. A solid large enough to be searched on a proxy is
 // searched once here: its proxy search grows both trees on the proxy and certifies only the better on
 // the solid (proxy_search.h), where a second search would double the certificates.
 Decomposition search_rules(const Solid& unit, const DecomposeOptions& opt)
 {
-	const auto start = std::chrono::steady_clock::now();
 	DecomposeOptions o = opt;
-	const bool both = opt.cut_search == CutSearch::Thorough && opt.max_parts == 0 &&
+	o.pick_rule        = PickRule::WorseHalf;
+	const bool both    = opt.cut_search == CutSearch::Thorough && opt.max_parts == 0 &&
 	                  unit.mesh.F.size() <= (size_t) ProxySettings().above;
-	if (both && opt.progress)
-		o.progress = [&](int pct, const char* msg) { return opt.progress(pct / 2, msg); };
-	o.pick_rule = PickRule::WorseHalf;
-	MergeMemo     memo;       // the two trees share their first cuts, and their merges many unions
-	MeasureMemo   measures;   // and the parts their planes make at the nodes they share
-	Decomposition D = search(unit, o, {}, both ? &memo : nullptr, both ? &measures : nullptr);
-	if (!both) return D;
-	if (opt.time_limit_seconds > 0) {
-		o.time_limit_seconds -= std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-		if (o.time_limit_seconds <= 0) return D;
-	}
-	if (opt.progress) o.progress = [&](int pct, const char* msg) { return opt.progress(50 + pct / 2, msg); };
-	o.pick_rule = PickRule::PartsNeeded;
-	Decomposition E = search(unit, o, {}, &memo, &measures);
-	if (!better(E, D)) return D;
-	E.pick_rule = PickRule::PartsNeeded;
-	return E;
+	if (!both) return search(unit, o);
+	const auto            start = std::chrono::steady_clock::now();
+	const std::thread::id caller = std::this_thread::get_id();
+	const int             threads = (int) available_threads();
+	MergeMemo             memo;       // the two trees share their first cuts, and their merges many unions
+	MeasureMemo           measures;   // and the parts their planes make at the nodes they share
+	std::array<Decomposition, 2> found;
+	std::array<bool, 2>          ran = {false, false};
+	std::atomic<int>             pct[2] = {0, 0};
+	std::atomic<bool>            cancelled{false};
+	auto one = [&](size_t k) {
+		const ThreadLimit all(threads);
+		DecomposeOptions  ok = o;
+		ok.pick_rule         = k == 0 ? PickRule::WorseHalf : PickRule::PartsNeeded;
+		if (opt.time_limit_seconds > 0) {
+			ok.time_limit_seconds -= std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+			if (k == 1 && ok.time_limit_seconds <= 0) return;
+		}
+		if (opt.progress)
+			ok.progress = [&, k](int p, const char* msg) {
+				pct[k] = p;
+				if (std::this_thread::get_id() == caller && !opt.progress((pct[0] + pct[1]) / 2, msg)) cancelled = true;
+				return !cancelled.load();
+			};
+		found[k] = search(unit, ok, {}, &memo, &measures);
+		ran[k]   = true;
+	};
+	parallel_for(2, one);
+	if (!ran[1] || !better(found[1], found[0])) return std::move(found[0]);
+	found[1].pick_rule = PickRule::PartsNeeded;
+	return std::move(found[1]);
 }
 
 } // namespace

@@ -10,6 +10,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <future>
 #include <mutex>
 #include <unordered_map>
 
@@ -21,7 +22,7 @@ public:
 	explicit MeasureMemo(size_t max_faces = 2000000) : max_faces(max_faces) {}
 
 	// The measure kept for mesh `m` under (tau, keep_cavities), else make()'s, kept if the budget
-	// allows. Safe to call from several threads.
+	// allows. Safe to call from several threads: a measure another thread is making is waited for.
 	MeasuredPtr find_or_make(const TriMesh& m, double tau, bool keep_cavities, const std::function<MeasuredPtr()>& make);
 
 	size_t hits() const { return hit; }
@@ -29,7 +30,7 @@ public:
 
 private:
 	std::mutex                                      mutex;
-	std::unordered_map<std::uint64_t, MeasuredPtr> kept;
+	std::unordered_map<std::uint64_t, std::shared_future<MeasuredPtr>> kept;
 	size_t                                          faces = 0, hit = 0;
 	const size_t                                    max_faces;
 };

@@ -5,9 +5,11 @@
 
 #include <algorithm>
 #include <atomic>
+#include <chrono>
 #include <condition_variable>
 #include <deque>
 #include <functional>
+#include <future>
 #include <exception>
 #include <mutex>
 #include <thread>
@@ -86,6 +88,27 @@ public:
 		job.done.wait(lock, [&] { return job.running == 0; });
 	}
 
+	// Works on queued loops on this thread until ready() holds: a thread waiting for what another is
+	// making (a shared measure) lends itself to that work's loops instead of idling.
+	template <class Ready>
+	void help_until(Ready ready)
+	{
+		std::unique_lock<std::mutex> lock(mutex_);
+		while (!ready()) {
+			if (queue_.empty()) {   // nothing to take: look again shortly (ready() has no signal of its own)
+				wake_.wait_for(lock, std::chrono::microseconds(200));
+				continue;
+			}
+			Job* job = queue_.front();
+			if (--job->wanted == 0) queue_.pop_front();
+			++job->running;
+			lock.unlock();
+			job->work();
+			lock.lock();
+			if (--job->running == 0) job->done.notify_all();
+		}
+	}
+
 private:
 	explicit ThreadPool(unsigned n)
 	{
@@ -112,6 +135,14 @@ private:
 	std::vector<std::thread> threads_;
 	bool                     stop_ = false;
 };
+
+// The value of a future another thread is making, this thread working on queued loops meanwhile.
+template <class T>
+T wait_helping(const std::shared_future<T>& f)
+{
+	ThreadPool::instance().help_until([&] { return f.wait_for(std::chrono::seconds(0)) == std::future_status::ready; });
+	return f.get();
+}
 
 // Runs fn(0..n-1) on the budget's threads (the caller and pool threads); each of them passes on its share
 // of the budget to the loops fn nests. The first exception is rethrown after all finish. Which thread runs
