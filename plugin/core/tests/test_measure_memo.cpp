@@ -1,8 +1,14 @@
 #include "acd/decompose3/measure_memo.h"
 #include "acd/mesh/measures.h"
+#include "acd/mesh/parallel.h"
 #include "acd/solid/solid.h"
 #include "check.h"
 #include "shapes.h"
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <thread>
 
 using namespace acd;
 
@@ -82,4 +88,33 @@ TEST_CASE("measure memo: keeps measures only within its budget of faces")
 	CHECK(made == 4);
 	large.find_or_make(s.mesh, 0.025, false, make);   // and tau
 	CHECK(made == 5);
+}
+
+TEST_CASE("measure memo: a measure one thread is making is waited for on another, not made twice")
+{
+	const Solid s = fine_u();
+	Node        n;
+	n.mesh = s.mesh;
+	MeasureMemo       memo;
+	std::atomic<int>  made{0};
+	std::vector<char> work(64, 0);
+	auto              make = [&] {
+        ++made;
+        // Until the other thread has found this measure in flight (bounded: a memo that does not share
+        // measures in flight never lets it find one, and then both make it).
+        const auto until = std::chrono::steady_clock::now() + std::chrono::seconds(5);
+        while (memo.hits() == 0 && std::chrono::steady_clock::now() < until) std::this_thread::yield();
+        parallel_for(work.size(), [&](size_t i) { work[i] = 1; });   // a loop the waiting thread may join
+        return measure_node(n, false, 0.05);
+	};
+	MeasuredPtr a, b;
+	std::thread maker([&] { a = memo.find_or_make(s.mesh, 0.05, false, make); });
+	while (made == 0) std::this_thread::yield();
+	b = memo.find_or_make(s.mesh, 0.05, false, make);
+	maker.join();
+	CHECK(made == 1);
+	CHECK(memo.hits() == 1);
+	REQUIRE(a);
+	CHECK(a == b);
+	CHECK(std::count(work.begin(), work.end(), 1) == (long) work.size());
 }

@@ -8,6 +8,7 @@
 
 #include "acd/decompose3/decompose.h"
 
+#include <atomic>
 #include <cstdint>
 #include <functional>
 #include <future>
@@ -31,7 +32,8 @@ public:
 private:
 	std::mutex                                      mutex;
 	std::unordered_map<std::uint64_t, std::shared_future<MeasuredPtr>> kept;
-	size_t                                          faces = 0, hit = 0;
+	size_t                                          faces = 0;
+	std::atomic<size_t>                             hit{0};
 	const size_t                                    max_faces;
 };
 
