@@ -765,8 +765,7 @@ Decomposition search_rules(const Solid& unit, const DecomposeOptions& opt)
 	const int             threads = (int) available_threads();
 	MergeMemo             memo;       // the two trees share their first cuts, and their merges many unions
 	MeasureMemo           measures;   // and the parts their planes make at the nodes they share
-	std::array<Decomposition, 2> found;
-	std::array<bool, 2>          ran = {false, false};
+	std::array<Decomposition, 2> found;   // the second stays empty when the first left it no time
 	std::atomic<int>             pct[2] = {0, 0};
 	std::atomic<bool>            cancelled{false};
 	auto one = [&](size_t k) {
@@ -784,10 +783,9 @@ Decomposition search_rules(const Solid& unit, const DecomposeOptions& opt)
 				return !cancelled.load();
 			};
 		found[k] = search(unit, ok, {}, &memo, &measures);
-		ran[k]   = true;
 	};
 	parallel_for(2, one);
-	if (!ran[1] || !better(found[1], found[0])) return std::move(found[0]);
+	if (found[1].nodes.empty() || !better(found[1], found[0])) return std::move(found[0]);
 	found[1].pick_rule = PickRule::PartsNeeded;
 	return std::move(found[1]);
 }

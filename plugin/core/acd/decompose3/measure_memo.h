@@ -7,13 +7,10 @@
 #pragma once
 
 #include "acd/decompose3/decompose.h"
+#include "acd/mesh/parallel.h"
 
-#include <atomic>
 #include <cstdint>
 #include <functional>
-#include <future>
-#include <mutex>
-#include <unordered_map>
 
 namespace acd {
 
@@ -26,15 +23,13 @@ public:
 	// allows. Safe to call from several threads: a measure another thread is making is waited for.
 	MeasuredPtr find_or_make(const TriMesh& m, double tau, bool keep_cavities, const std::function<MeasuredPtr()>& make);
 
-	size_t hits() const { return hit; }
+	size_t hits() const { return kept.hits(); }
 	size_t size() const { return kept.size(); }
 
 private:
-	std::mutex                                      mutex;
-	std::unordered_map<std::uint64_t, std::shared_future<MeasuredPtr>> kept;
-	size_t                                          faces = 0;
-	std::atomic<size_t>                             hit{0};
-	const size_t                                    max_faces;
+	SharedResults<std::uint64_t, MeasuredPtr> kept;
+	size_t                                    faces = 0;   // of the kept measures (changed under kept's lock)
+	const size_t                              max_faces;
 };
 
 } // namespace acd

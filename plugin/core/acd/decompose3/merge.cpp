@@ -20,7 +20,6 @@
 #include <atomic>
 #include <cstdint>
 #include <map>
-#include <future>
 #include <mutex>
 #include <optional>
 #include <queue>
@@ -150,8 +149,7 @@ struct Candidate
 // none where it failed the certificate.
 struct MergeMemo::Unions
 {
-	std::mutex                                                     mutex;
-	std::map<std::array<std::uint64_t, 3>, std::shared_future<std::optional<Group>>> by_key;
+	SharedResults<std::array<std::uint64_t, 3>, std::optional<Group>> by_key;
 };
 
 namespace {
@@ -324,32 +322,10 @@ private:
 		if (!memo) return measure_union(a, b, planes, leaves);
 		const std::uint64_t                cuts[2] = {planes_hash(planes), planes_hash(separating(leaves))};
 		const std::array<std::uint64_t, 3> key     = {groups[a].content, groups[b].content, mix(0, cuts, sizeof cuts)};
-		std::promise<std::optional<Group>> made;
-		{
-			std::unique_lock<std::mutex> lock(memo->unions->mutex);
-			const auto                   it = memo->unions->by_key.find(key);
-			if (it != memo->unions->by_key.end()) {   // measured, or being measured by the other search
-				const std::shared_future<std::optional<Group>> f = it->second;
-				lock.unlock();
-				std::optional<Group> g = wait_helping(f);
-				if (g) g->leaves = leaves;
-				return g;
-			}
-			memo->unions->by_key.emplace(key, made.get_future().share());
-		}
-		try {
-			std::optional<Group> g    = measure_union(a, b, planes, leaves);
-			std::optional<Group> kept = g;
-			if (kept) kept->leaves.clear();
-			made.set_value(std::move(kept));
-			return g;
-		}
-		catch (...) {
-			made.set_exception(std::current_exception());
-			std::lock_guard<std::mutex> lock(memo->unions->mutex);
-			memo->unions->by_key.erase(key);
-			throw;
-		}
+		// Measured, or being measured by the other search: the same union whichever leaves it took.
+		std::optional<Group> g = memo->unions->by_key.find_or_make(key, [&] { return measure_union(a, b, planes, leaves); });
+		if (g) g->leaves = leaves;
+		return g;
 	}
 
 	// `planes`: the cuts they touch along (contact_planes); `leaves`: both groups' (merged_leaves).
@@ -551,7 +527,6 @@ MergeMemo::MergeMemo() : unions(std::make_unique<Unions>()) {}
 MergeMemo::~MergeMemo() = default;
 size_t MergeMemo::size() const
 {
-	std::lock_guard<std::mutex> lock(unions->mutex);
 	return unions->by_key.size();
 }
 

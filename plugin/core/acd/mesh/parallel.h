@@ -10,6 +10,7 @@
 #include <deque>
 #include <functional>
 #include <future>
+#include <map>
 #include <exception>
 #include <mutex>
 #include <thread>
@@ -99,13 +100,7 @@ public:
 				wake_.wait_for(lock, std::chrono::microseconds(200));
 				continue;
 			}
-			Job* job = queue_.front();
-			if (--job->wanted == 0) queue_.pop_front();
-			++job->running;
-			lock.unlock();
-			job->work();
-			lock.lock();
-			if (--job->running == 0) job->done.notify_all();
+			work_on_front(lock);
 		}
 	}
 
@@ -114,19 +109,24 @@ private:
 	{
 		for (unsigned i = 0; i < n; ++i) threads_.emplace_back([this] { serve(); });
 	}
+	// Joins the queue's first loop as one more helper (the lock held on entry and on return).
+	void work_on_front(std::unique_lock<std::mutex>& lock)
+	{
+		Job* job = queue_.front();
+		if (--job->wanted == 0) queue_.pop_front();
+		++job->running;
+		lock.unlock();
+		job->work();
+		lock.lock();
+		if (--job->running == 0) job->done.notify_all();
+	}
 	void serve()
 	{
 		std::unique_lock<std::mutex> lock(mutex_);
 		for (;;) {
 			wake_.wait(lock, [&] { return stop_ || !queue_.empty(); });
 			if (stop_) return;
-			Job* job = queue_.front();
-			if (--job->wanted == 0) queue_.pop_front();
-			++job->running;
-			lock.unlock();
-			job->work();
-			lock.lock();
-			if (--job->running == 0) job->done.notify_all();
+			work_on_front(lock);
 		}
 	}
 	std::mutex               mutex_;
@@ -143,6 +143,64 @@ T wait_helping(const std::shared_future<T>& f)
 	ThreadPool::instance().help_until([&] { return f.wait_for(std::chrono::seconds(0)) == std::future_status::ready; });
 	return f.get();
 }
+
+// Values that several threads may ask for at once, each made once: a value another thread is making is
+// waited for (wait_helping), not made again. A make() that throws keeps nothing.
+template <class Key, class Value>
+class SharedResults
+{
+public:
+	// The value under `key`, else make()'s. When the key is new, claim() (under the lock) says whether
+	// to keep it; release() (under the lock) undoes a claim whose make() threw.
+	template <class Make, class Claim, class Release>
+	Value find_or_make(const Key& key, const Make& make, const Claim& claim, const Release& release)
+	{
+		std::promise<Value> made;
+		{
+			std::unique_lock<std::mutex> lock(mutex_);
+			const auto                   it = kept_.find(key);
+			if (it != kept_.end()) {
+				++hits_;
+				const std::shared_future<Value> f = it->second;
+				lock.unlock();
+				return wait_helping(f);
+			}
+			if (!claim()) {
+				lock.unlock();
+				return make();
+			}
+			kept_.emplace(key, made.get_future().share());
+		}
+		try {
+			Value v = make();   // outside the lock: makers run on all cores
+			made.set_value(v);
+			return v;
+		}
+		catch (...) {
+			made.set_exception(std::current_exception());
+			std::lock_guard<std::mutex> lock(mutex_);
+			kept_.erase(key);
+			release();
+			throw;
+		}
+	}
+	template <class Make>
+	Value find_or_make(const Key& key, const Make& make)
+	{
+		return find_or_make(key, make, [] { return true; }, [] {});
+	}
+	size_t size() const
+	{
+		std::lock_guard<std::mutex> lock(mutex_);
+		return kept_.size();
+	}
+	size_t hits() const { return hits_; }
+
+private:
+	mutable std::mutex                             mutex_;
+	std::map<Key, std::shared_future<Value>>       kept_;
+	std::atomic<size_t>                            hits_{0};
+};
 
 // Runs fn(0..n-1) on the budget's threads (the caller and pool threads); each of them passes on its share
 // of the budget to the loops fn nests. The first exception is rethrown after all finish. Which thread runs
