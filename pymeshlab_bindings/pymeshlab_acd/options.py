@@ -38,7 +38,8 @@ HELP = dict(
                   "then not cut either); concavity, "
                   "that and every notch's concavity (the cuts' own measure: more parts)",
     cut_search="thorough: grow the cut tree twice, cuts picked by the worse part's concavity (the paper) and by "
-               "the parts both parts are estimated to need, and keep the one with fewer parts (about twice the "
+               "the parts both parts are estimated to need (also trying the planes across the part's principal axes), and "
+               "keep the one with fewer parts (about twice the "
                "time; a mesh of over 100,000 faces grows both on its simplified copy and certifies the better); fast: "
                "the first alone",
     max_hull_vertices="at most this many vertices per collision hull, on top of --engine's limits (0: none); a "

@@ -89,6 +89,31 @@ TEST_CASE("bisector or face cuts a stepped shaft at its steps")
 	for (size_t k = 0; k < a.nodes.size(); ++k) CHECK(a.nodes[k].mesh.V == b.nodes[k].mesh.V);
 }
 
+TEST_CASE("the parts-needed search takes a block off a sloping plate along the plate's own lie")
+{
+	// A plate whose top slopes down from the middle to both ends, a block standing on it in the middle:
+	// two convex pieces, split by the plane of the block's foot. At either notch (a foot of the block)
+	// neither the bisector nor the notch's two faces (the block's wall, the slope, 8.5 degrees from
+	// level) is that plane; the plane across the plate's minor axis is. Turned, the same cut.
+	const TriMesh foot = shapes::subdivided(
+	    shapes::extrude({{0, 0}, {10, 0}, {10, 0.4}, {6, 1}, {6, 2.5}, {4, 2.5}, {4, 1}, {0, 0.4}}, 0, 4));
+	const double  tau  = 0.05;
+	DecomposeOptions o;
+	o.tau        = tau;
+	o.cut_search = CutSearch::Fast;
+	const Decomposition greedy = decompose(make_solid(foot), o);
+	CHECK(greedy.parts().size() > 2);   // the test tells the searches apart
+	const Eigen::Matrix3d turn = Eigen::AngleAxisd(0.7, Vec3(1, -2, 0.5).normalized()).toRotationMatrix();
+	TriMesh               turned = foot;
+	for (Vec3& v : turned.V) v = turn * v;
+	for (const TriMesh& m : {foot, turned}) {
+		const Decomposition d = run(m, tau, CutPlaneSelection::BisectorOrFace);
+		CHECK(d.parts().size() == 2);
+		check_partition(m, d);
+		for (int i : d.parts()) CHECK(d.nodes[i].hull_distance_bound <= 1.01 * tau);
+	}
+}
+
 TEST_CASE("min section cuts the neck")
 {
 	// A spindle pinched by a lopsided V at z = 1.2: the bisector of the notch's faces leans with the V;

@@ -1,5 +1,8 @@
 #include "acd/mesh/measures.h"
 #include "check.h"
+#include "shapes.h"
+
+#include <Eigen/Geometry>
 
 #include <cmath>
 
@@ -56,4 +59,24 @@ TEST_CASE("a line through a corner, or missing the mesh")
 	CHECK_NEAR(t[1], corner.norm(), 1e-12);
 	CHECK_NEAR(t[0], -corner.norm(), 1e-12);
 	CHECK(line_crossings(m, Vec3(5, 5, 0), Vec3(0, 0, 1)).empty());
+}
+
+TEST_CASE("a pose frame's axis is the shape's own only where its spread stands apart")
+{
+	const Eigen::Matrix3d turn = Eigen::AngleAxisd(1.1, Vec3(2, 1, -1).normalized()).toRotationMatrix();
+	for (const bool turned : {false, true}) {
+		// The frame weighs faces at their centroids: a round plate of 48 sides has no preferred radius.
+		TriMesh slab  = shapes::box(Vec3(0, 0, 0), Vec3(4, 2, 1));
+		TriMesh plate = shapes::lathe({{0, 0}, {3, 0}, {3, 0.5}, {0, 0.5}}, 48);
+		if (turned)
+			for (TriMesh* m : {&slab, &plate})
+				for (Vec3& v : m->V) v = turn * v;
+		const PoseFrame a = pose_frame(slab), b = pose_frame(plate);
+		CHECK((a.distinct(0) && a.distinct(1) && a.distinct(2)));
+		CHECK((!b.distinct(0) && !b.distinct(1) && b.distinct(2)));   // a round plate: only its normal
+		const Vec3 normal = turned ? Vec3(turn * Vec3::UnitZ()) : Vec3::UnitZ();
+		CHECK(std::abs(Vec3(b.axes.row(2).transpose()).dot(normal)) == doctest::Approx(1.0).epsilon(1e-12));
+		CHECK(a.spread[0] > a.spread[1]);
+		CHECK(a.spread[1] > a.spread[2]);
+	}
 }

@@ -140,6 +140,7 @@ struct NotchSite
 	const ConvexHull&      hull;
 	const ConcavityReport& rep;
 	int                    around;
+	bool                   axes = false;
 	int                    r;
 	Vec3                   p;
 	NotchEdge              ne;
@@ -220,9 +221,24 @@ CutPlan min_section(const NotchSite& s)
 	return plan;
 }
 
+// The planes through the notch across the part's principal axes, those the pose cannot turn and that
+// no plane of the plan already lies along: a step or slab is taken off along the part's own lie, where
+// the notch's faces and bisector tilt with the notch (a boss whose wall meets a sloping floor).
+void principal_planes(const NotchSite& s, std::vector<Plane>& planes)
+{
+	const PoseFrame& fr = s.rep.frame;
+	for (int k = 0; k < 3; ++k) {
+		const Vec3 n   = fr.axes.row(k).transpose();
+		bool       dup = !fr.distinct(k);
+		for (const Plane& q : planes) dup = dup || std::abs(q.n.dot(n)) > 1 - 1e-9;
+		if (!dup) planes.push_back(through(s.p, n));
+	}
+}
+
 // The notch's two faces extended (a CAD step, slot or flange cut off along its own face: only at a sharp
 // reflex edge, 30 degrees or more from flat; on a smooth or wrapped surface the faces' planes are
-// near-tangent slices), the rim's plane and the floor's, after the bisector; none of these: the bisector.
+// near-tangent slices), the rim's plane and the floor's, after the bisector, and with `axes` the
+// principal planes; none of these: the bisector.
 CutPlan bisector_or_face(const NotchSite& s)
 {
 	if (s.r < 0) return bisector(s);
@@ -232,7 +248,7 @@ CutPlan bisector_or_face(const NotchSite& s)
 	const std::optional<Vec3>  floor = !sharp && !rim && s.ne.excess > 0 && !s.rep.reach_cut && s.rep.max_bridge >= 0
 	                                       ? floor_normal(s.m, s.p, s.ne, s.hull.facet_plane[s.rep.max_bridge].n)
 	                                       : std::nullopt;
-	if (!b || !(sharp || rim || floor)) return bisector(s);
+	if (!b || !(sharp || rim || floor || s.axes)) return bisector(s);
 	CutPlan             plan{{*b}, CutPolicy::BisectorStands, false, true};
 	std::array<Vec3, 2> faces = s.ne.faces;
 	// After the bisector, in the part's frame's order: a tie goes the same way in any pose.
@@ -240,6 +256,7 @@ CutPlan bisector_or_face(const NotchSite& s)
 	if (sharp) plan.planes = {*b, through(s.p, faces[0]), through(s.p, faces[1])};
 	if (rim) plan.planes.push_back(through(s.p, *rim));
 	if (floor) plan.planes.push_back(through(s.p, *floor));
+	if (s.axes) principal_planes(s, plan.planes);
 	return plan;
 }
 
@@ -259,9 +276,11 @@ Strategy strategy(CutPlaneSelection sel)
 } // namespace
 
 CutPlan plan_notch_cut(const TriMesh& m, const Topology& topo, const ConvexHull& hull, const ConcavityReport& rep,
-                       CutPlaneSelection sel, int around)
+                       CutPlaneSelection sel, int around, bool axes)
 {
-	return strategy(sel)(NotchSite(m, topo, hull, rep, around));
+	NotchSite s(m, topo, hull, rep, around);
+	s.axes = axes;
+	return strategy(sel)(s);
 }
 
 std::vector<Plane> all_notch_planes(const TriMesh& m, const Topology& topo, const ConvexHull& hull,

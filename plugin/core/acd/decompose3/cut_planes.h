@@ -54,9 +54,11 @@ struct CutPlan
 	bool               widen    = false;   // when none splits, score all_notch_planes() before halving
 };
 
-// The plan of strategy `sel` for the notch rep.max_vertex of `m` (`around`: planes in a fan).
+// The plan of strategy `sel` for the notch rep.max_vertex of `m` (`around`: planes in a fan). With `axes`,
+// BisectorOrFace also scores the planes through the notch across the part's principal axes (the search
+// that judges planes by the parts they leave: by the worse part alone they rarely win, and cost a trial).
 CutPlan plan_notch_cut(const TriMesh& m, const Topology& topo, const ConvexHull& hull, const ConcavityReport& rep,
-                       CutPlaneSelection sel, int around);
+                       CutPlaneSelection sel, int around, bool axes = false);
 
 // Every plane a notch offers (Best's), bisector first: what a stalled or unsplittable notch falls back on.
 std::vector<Plane> all_notch_planes(const TriMesh& m, const Topology& topo, const ConvexHull& hull,

@@ -369,7 +369,8 @@ private:
 		const Measured& ms   = *measured[c.id];
 		if (c.hole < 0) {
 			c.notch = ms.surface(mesh).V[ms.rep.max_vertex];
-			CutPlan plan = plan_notch_cut(ms.surface(mesh), ms.topo, ms.hull, ms.rep, opt.cut_plane_selection, opt.candidate_planes);
+			CutPlan plan = plan_notch_cut(ms.surface(mesh), ms.topo, ms.hull, ms.rep, opt.cut_plane_selection,
+			                              opt.candidate_planes, by_need());
 			c.planes     = std::move(plan.planes);
 			c.first_fit  = plan.policy == CutPolicy::FirstFit;
 			c.by_section = plan.policy == CutPolicy::BySection;
@@ -557,6 +558,7 @@ private:
 		trial(c, 0, true, INFINITY, true);
 		const Trial& t0   = c.trials[0];
 		const double beat = !t0.ok || t0.crosses ? INFINITY : by_need() ? need_beat(t0.need) : kClearlyLess * t0.score;
+		if (!(beat > 0)) return;   // no part weighs below 0: none can beat the bisector
 		parallel_for(c.planes.size() - 1, [&](size_t i) { trial(c, i + 1, true, beat); });
 	}
 

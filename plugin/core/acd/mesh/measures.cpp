@@ -129,6 +129,7 @@ PoseFrame pose_frame(const TriMesh& m)
 		if (i != weakest && skew[i] < 0) axes.row(i) *= -1;
 	if (axes.determinant() < 0) axes.row(weakest) *= -1;
 	fr.axes   = axes;
+	for (int i = 0; i < 3; ++i) fr.spread[i] = es.eigenvalues()[2 - i];
 	fr.tol    = 1e-9 * extent(m.V);
 	return fr;
 }

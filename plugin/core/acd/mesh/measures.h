@@ -27,7 +27,16 @@ double extent(const std::vector<Vec3>& pts);
 struct PoseFrame
 {
 	Eigen::Matrix3d axes = Eigen::Matrix3d::Identity();   // rows: major, middle, minor axis
+	Vec3            spread = Vec3::Zero();                 // the surface's variance along each axis
 	double          tol = 0;                               // coordinates closer than this are equal
+	// Axis k is the shape's own, the same in any pose: its variance stands apart from the other two
+	// (on a square plate or a round bar two axes are any pair the pose and rounding make).
+	bool distinct(int k, double gap = 0.05) const
+	{
+		for (int j = 0; j < 3; ++j)
+			if (j != k && !(std::abs(spread[j] - spread[k]) > gap * std::max(spread[j], spread[k]))) return false;
+		return true;
+	}
 	// Does a come before b? Compares coordinates along the axes in turn; false when all are equal.
 	bool before(const Vec3& a, const Vec3& b) const
 	{
