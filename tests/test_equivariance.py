@@ -11,7 +11,7 @@ import pymeshlab
 import pytest
 
 import pymeshlab_acd
-from support.meshes import BUNNY, SHARED, add_mesh, volume
+from support.meshes import BUNNY, SHARED, add_mesh, random_rotation, same_parts, volume
 
 TAU = 5.0                     # percent of the enclosing-sphere diameter (rotation invariant)
 SELECTION = "bisector"
@@ -22,14 +22,6 @@ def load(path):
     ms = pymeshlab.MeshSet()
     ms.load_new_mesh(str(path))
     return ms.current_mesh().vertex_matrix().copy(), ms.current_mesh().face_matrix().copy()
-
-
-def random_rotation(seed):
-    q, r = np.linalg.qr(np.random.default_rng(seed).normal(size=(3, 3)))
-    q *= np.sign(np.diag(r))
-    if np.linalg.det(q) < 0:
-        q[:, 0] = -q[:, 0]
-    return q
 
 
 def decompose(V, F, hulls=False):
@@ -72,10 +64,6 @@ def hull_error(ms, ids, samples=20000, seed=0):
     r = ms.get_hausdorff_distance(sampledmesh=ms.current_mesh_id(), targetmesh=0, samplevert=True,
                                   sampleface=False, samplenum=len(pc))
     return r["max"] / diag
-
-
-def same_parts(a, b, scale=1.0):
-    return len(a) == len(b) and np.allclose(a, b * scale, rtol=1e-4, atol=1e-4 * b.sum() * scale)
 
 
 MESHES = [("bunny", BUNNY)] + [(n, SHARED / f"{n}.obj") for n in ("spot", "fandisk", "homer")]

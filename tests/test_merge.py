@@ -12,7 +12,7 @@ import pymeshlab
 import pytest
 
 import pymeshlab_acd
-from support.meshes import add_mesh, extrude, is_closed_manifold, torus, volume
+from support.meshes import add_mesh, box, extrude, is_closed_manifold, random_rotation, same_parts, torus, volume
 from support.partition import check_partition
 
 cad_solids = pytest.importorskip("support.cad_solids")
@@ -81,11 +81,10 @@ def test_low_boss_comes_off_its_plate_whole():
     assert [volume(V, F) for V, F, _ in parts] == pytest.approx([9950.0], rel=1e-4)
 
     # In any pose: the flat is found by the faces' own planes, not by the axes.
-    import test_equivariance as te
     V, F = solid("bossed_plate")
     for seed in range(3):
         ms = pymeshlab.MeshSet()
-        add_mesh(ms, V @ te.random_rotation(seed).T, F, "bossed_plate")
+        add_mesh(ms, V @ random_rotation(seed).T, F, "bossed_plate")
         _, ids = pymeshlab_acd.decompose(ms, with_tree=False, tau=2.0, merge_measure="concavity")
         vols = sorted(volume(ms.mesh(i).vertex_matrix(), ms.mesh(i).face_matrix()) for i in ids)
         assert vols == pytest.approx([350.0, 9600.0], rel=1e-4), seed
@@ -153,7 +152,6 @@ def test_command_line_merges_unless_told_not_to(tmp_path):
 def test_the_same_parts_merge_in_any_pose(name):
     """Rotated, the solid comes out in the same parts: the same count and the same sorted part volumes
     (measured here), whatever rounding the rotation brings to the cuts and the glued seams."""
-    import test_equivariance as te
     V, F = solid(name)
 
     def parts(W):
@@ -166,8 +164,8 @@ def test_the_same_parts_merge_in_any_pose(name):
     merges0, vols0 = parts(V)
     assert merges0 > 0
     for seed in range(3):
-        merges, vols = parts(V @ te.random_rotation(seed).T)
-        assert te.same_parts(vols, vols0), (seed, merges, merges0, len(vols), len(vols0))
+        merges, vols = parts(V @ random_rotation(seed).T)
+        assert same_parts(vols, vols0), (seed, merges, merges0, len(vols), len(vols0))
 
 
 def test_a_slot_narrower_than_tau_merges_by_the_hull_not_by_the_notches():
@@ -187,3 +185,27 @@ def test_a_slot_narrower_than_tau_merges_by_the_hull_not_by_the_notches():
     assert res["hull_distance"]["merges"] == 0   # the cuts stopped at the block: nothing to merge back
     assert res["hull_distance"]["hull_certified_parts"] == 1 and res["concavity"]["hull_certified_parts"] == 0
     assert res["hull_distance"]["max_concavity"] > res["hull_distance"]["tau_model_units"]   # the slot's floor
+
+
+@pytest.mark.parametrize("gap,parts", [(0.1, 1), (0.8, 2)])
+def test_separate_solids_of_an_assembly_share_a_hull_where_it_stays_within_tau(gap, parts):
+    """Two blocks side by side (an assembly's pieces, one mesh of two closed shells), a gap between them:
+    near, they are one part of both shells, its hull within tau of them; far, the middle of the gap
+    lies beyond tau from both and they stay two. By the paper's concavity alone they stay two."""
+    Va, Fa = box((0, 0, 0), (1, 1, 1))
+    Vb, Fb = box((1 + gap, 0.05, 0), (1.8 + gap, 0.95, 0.95))
+    V, F = np.vstack([Va, Vb]), np.vstack([Fa, np.asarray(Fb) + len(Va)])
+    ms = pymeshlab.MeshSet()
+    pymeshlab_acd.load()
+    add_mesh(ms, V, F, "assembly")
+    res, ids = pymeshlab_acd.decompose(ms, with_tree=False, tau=5.0)
+    assert res["parts"] == parts and len(ids) == parts
+    check_partition(ms, 0, ids, tau_abs=res["tau_model_units"])
+    if parts == 1:
+        Vp, Fp = ms.mesh(ids[0]).vertex_matrix(), ms.mesh(ids[0]).face_matrix()
+        assert len(Fp) == len(F)
+        assert volume(Vp, Fp) == pytest.approx(1.0 + 0.8 * 0.9 * 0.95, rel=1e-9)
+    ms2 = pymeshlab.MeshSet()
+    add_mesh(ms2, V, F, "assembly")
+    res2, _ = pymeshlab_acd.decompose(ms2, with_tree=False, tau=5.0, merge_measure="concavity")
+    assert res2["parts"] == 2

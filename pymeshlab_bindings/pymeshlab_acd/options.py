@@ -35,7 +35,8 @@ HELP = dict(
                 "tree's leaves as they are)",
     merge_measure="what a union must stay within tau by to be merged: hull_distance, its hull's distance to it "
                   "(a pocket the hull spans, such as a slot narrower than tau, may stay in one part, which is "
-                  "then not cut either); concavity, "
+                  "then not cut either; parts of separate solids of the input merge where one hull stays within "
+                  "tau of both); concavity, "
                   "that and every notch's concavity (the cuts' own measure: more parts)",
     cut_search="thorough: grow the cut tree twice, cuts picked by the worse part's concavity (the paper) and by "
                "the parts both parts are estimated to need (also trying the planes across the part's principal axes), and "

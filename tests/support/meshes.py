@@ -181,3 +181,17 @@ def hull_within(V, F, tau_abs, label="part"):
     assert upper <= 1.01 * tau_abs * (1 + 1e-9), \
         f"{label}: its hull lies {lower:.4g} from it (tau {tau_abs:.4g}, {lower / tau_abs:.2f} tau)"
     return lower
+
+
+def random_rotation(seed):
+    """A proper rotation drawn from the seed (QR of a Gaussian matrix, signs fixed, determinant +1)."""
+    q, r = np.linalg.qr(np.random.default_rng(seed).normal(size=(3, 3)))
+    q *= np.sign(np.diag(r))
+    if np.linalg.det(q) < 0:
+        q[:, 0] = -q[:, 0]
+    return q
+
+
+def same_parts(a, b, scale=1.0):
+    """Two sorted lists of part volumes agree (b scaled by `scale`), to 1e-4 relative."""
+    return len(a) == len(b) and np.allclose(a, b * scale, rtol=1e-4, atol=1e-4 * b.sum() * scale)

@@ -482,3 +482,35 @@ TEST_CASE("under the hull distance measure a part whose hull stays within tau is
 	o.merge_parts   = false;
 	CHECK(decompose(make_solid(block), o).leaves().size() > 1);
 }
+
+TEST_CASE("merge by hull distance: parts of separate solids merge where one hull stands for both within tau")
+{
+	// An assembly of two blocks, the second a little smaller and off the first's axis, a gap between
+	// them along x. Their hull spans the gap: its farthest point from the blocks lies half the gap (or
+	// more) away.
+	for (const double gap : {0.1, 0.6}) {
+		TriMesh two = shapes::box({0, 0, 0}, {1, 1, 1});
+		append(two, shapes::box({1 + gap, 0.05, 0}, {1.8 + gap, 0.95, 0.95}));
+		const Solid      solid = make_solid(two);
+		DecomposeOptions o;
+		o.tau = 0.05 * extent(two.V);
+		REQUIRE((o.tau > 0.05 && o.tau < 0.3));
+		const Decomposition D = decompose(solid, o);
+		const double        volume = 1.0 + 0.8 * 0.9 * 0.95;
+		CHECK(D.tau_convex());
+		if (gap < o.tau) {   // near: one hull within tau of both blocks
+			REQUIRE(D.parts().size() == 1);
+			const Node& part = D.nodes[D.parts()[0]];
+			CHECK(part.mesh.F.size() == two.F.size());
+			CHECK(std::abs(signed_volume(part.mesh) - volume) < 1e-9);
+			CHECK(hull_reach_sampled(part.mesh, 40) <= 1.01 * o.tau);
+			// By the paper's measure alone the two blocks stay apart.
+			o.merge_measure = MergeMeasure::Concavity;
+			CHECK(decompose(solid, o).parts().size() == 2);
+		}
+		else {   // far: the gap's middle lies farther than tau from both
+			CHECK(D.parts().size() == 2);
+			CHECK(hull_reach_sampled(two, 10) > 1.01 * o.tau);
+		}
+	}
+}

@@ -70,8 +70,9 @@ std::vector<Option> make_table()
 		 "whether the limit was reached.", {}},
 		{"merge_parts", O::Flag, 1, "Merge neighbouring parts",
 		 "After the cuts, merge parts that share a cut face while their union stays within tau (by merge_measure), "
-		 "the least concave union first: fewer parts, still an exact partition. Off: the cut tree's leaves as they "
-		 "are.", {}},
+		 "the least concave union first: fewer parts, still an exact partition. By hull_distance, parts of "
+		 "separate solids of the input (an assembly's pieces) merge too where one hull stays within tau of both. "
+		 "Off: the cut tree's leaves as they are.", {}},
 		{"merge_measure", O::Choice, (int) MergeMeasure::HullDistance, "Merge while within tau by",
 		 "What a union of neighbouring parts must stay within tau by to be merged.", merge_measures()},
 		{"cut_search", O::Choice, (int) CutSearch::Thorough, "Cut search", "How hard the search for cuts looks.",

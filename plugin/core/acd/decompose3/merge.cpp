@@ -133,6 +133,7 @@ struct Group
 	std::vector<Vec3> extreme;   // the vertices of its hull
 	std::vector<Vec3> notches;   // the ends of its reflex edges (MergeMeasure::Concavity's prefilter only)
 	long              crossings = -1;  // faces crossing away from the cuts between its leaves (-1: not counted)
+	int               shells = 1;      // its solid's shells (a union across the input's solids has several)
 	bool              alive = true;
 	int               origin = -1;   // the part's node it started as (merge_parts_further), else -1
 };
@@ -228,6 +229,7 @@ private:
 			g.origin  = first ? l : -1;
 			g.part    = n;
 			g.content = memo ? content_hash(n.mesh) : 0;
+			if (!n.merged.empty()) face_components(n.mesh, &g.shells);
 			// Only certified parts merge: an uncut leaf or one holding a kept cavity stays as it is.
 			g.alive = n.cavities == 0 && certified(n, tau);
 			groups.push_back(std::move(g));
@@ -266,6 +268,47 @@ private:
 			nbr[ga].insert(gb);
 			nbr[gb].insert(ga);
 		}
+		if (by_hull) near_across_solids();
+	}
+
+	// The solid (shell) a leaf lies in: its path down to the child of its deepest ancestor split into
+	// the input's solids (A | rest), or "" when the input is one solid.
+	std::string solid_of(int leaf) const
+	{
+		const std::string& p = D.nodes[leaf].path;
+		for (size_t n = p.size() - 1; n >= 1; --n) {
+			const auto it = by_path.find(p.substr(0, n));
+			if (it != by_path.end() && D.nodes[it->second].solids) return p.substr(0, n + 1);
+		}
+		return "";
+	}
+
+	// Parts of different solids of the input (an assembly's rod and its end pieces) share no cut, yet
+	// one hull may stand for both within tau, as a peer's single hull does: under the hull-distance
+	// certificate, parts of disjoint solids whose boxes come within twice the certificate's bar of each
+	// other are neighbours too (farther apart, the middle of the gap between them, which their hull
+	// spans, lies farther than the bar from both), and their union is the two solids side by side.
+	void near_across_solids()
+	{
+		std::vector<std::set<std::string>> solids(groups.size());
+		std::vector<std::array<Vec3, 2>>   box(groups.size());
+		for (int g = 0; g < (int) groups.size(); ++g) {
+			if (!groups[g].alive) continue;
+			for (int l : groups[g].leaves) solids[g].insert(solid_of(l));
+			box[g] = {groups[g].part.mesh.V[0], groups[g].part.mesh.V[0]};
+			for (const Vec3& v : groups[g].part.mesh.V) box[g][0] = box[g][0].cwiseMin(v), box[g][1] = box[g][1].cwiseMax(v);
+		}
+		const double gap = 2 * bar();
+		for (int a = 0; a < (int) groups.size(); ++a)
+			for (int b = a + 1; b < (int) groups.size(); ++b) {
+				if (!groups[a].alive || !groups[b].alive || solids[a].count("") || solids[b].count("")) continue;
+				bool apart = true;
+				for (const std::string& x : solids[a]) apart &= !solids[b].count(x);
+				const bool near = ((box[a][0] - box[b][1]).array() <= gap).all() && ((box[b][0] - box[a][1]).array() <= gap).all();
+				if (!apart || !near) continue;
+				nbr[a].insert(b);
+				nbr[b].insert(a);
+			}
 	}
 
 	// The cuts between the leaves: the nodes with some of them below each child.
@@ -348,12 +391,15 @@ private:
 			return std::nullopt;
 		Solid s;
 		try {   // crossings searched last: most unions fail before, and the search costs as much as a measure
-			s = make_solid(glue(PA.mesh, PB.mesh, planes, eps), false);
+			s = make_solid(planes.empty() ? both : glue(PA.mesh, PB.mesh, planes, eps), false);
 		}
 		catch (const std::exception&) {   // the glued surface is not a clean solid (a seam left open)
 			return std::nullopt;
 		}
-		if (s.shells != 1 || s.cavities > 0) return std::nullopt;
+		// Glued along a cut, at least two of their shells become one; side by side, none does.
+		const int shells = A.shells + B.shells - (planes.empty() ? 0 : 1);
+		if (s.shells < 1 || s.shells > shells || (planes.empty() && s.shells != shells) || s.cavities > 0)
+			return std::nullopt;
 		if (std::abs(s.volume - PA.volume - PB.volume) > 1e-6 * (PA.volume + PB.volume)) return std::nullopt;
 		const Topology        topo(s.mesh);
 		const ConvexHull      hull(s.mesh.V);
@@ -367,6 +413,7 @@ private:
 		n.notch_count         = rep.notches;
 		if (rep.max_vertex >= 0) n.notch = s.mesh.V[rep.max_vertex];
 		if (!certify_merged(n, tau, measure)) return std::nullopt;
+		g.shells  = s.shells;
 		n.mesh    = std::move(s.mesh);
 		g.extreme = extreme_points(corners);
 		g.leaves  = std::move(leaves);
