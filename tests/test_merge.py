@@ -191,7 +191,8 @@ def test_a_slot_narrower_than_tau_merges_by_the_hull_not_by_the_notches():
 def test_separate_solids_of_an_assembly_share_a_hull_where_it_stays_within_tau(gap, parts):
     """Two blocks side by side (an assembly's pieces, one mesh of two closed shells), a gap between them:
     near, they are one part of both shells, its hull within tau of them; far, the middle of the gap
-    lies beyond tau from both and they stay two. By the paper's concavity alone they stay two."""
+    lies beyond tau from both and they stay two, in any pose. By the paper's concavity alone they stay
+    two."""
     Va, Fa = box((0, 0, 0), (1, 1, 1))
     Vb, Fb = box((1 + gap, 0.05, 0), (1.8 + gap, 0.95, 0.95))
     V, F = np.vstack([Va, Vb]), np.vstack([Fa, np.asarray(Fb) + len(Va)])
@@ -209,3 +210,11 @@ def test_separate_solids_of_an_assembly_share_a_hull_where_it_stays_within_tau(g
     add_mesh(ms2, V, F, "assembly")
     res2, _ = pymeshlab_acd.decompose(ms2, with_tree=False, tau=5.0, merge_measure="concavity")
     assert res2["parts"] == 2
+    # Turned, the same parts (count and volumes, measured here).
+    vols0 = np.sort([volume(ms.mesh(i).vertex_matrix(), ms.mesh(i).face_matrix()) for i in ids])
+    for seed in range(2):
+        mr = pymeshlab.MeshSet()
+        add_mesh(mr, V @ random_rotation(seed).T, F, "assembly")
+        _, rids = pymeshlab_acd.decompose(mr, with_tree=False, tau=5.0)
+        vols = np.sort([volume(mr.mesh(i).vertex_matrix(), mr.mesh(i).face_matrix()) for i in rids])
+        assert same_parts(vols, vols0), seed
