@@ -35,12 +35,14 @@ import bench_robots as br  # noqa: E402
 import object_set  # noqa: E402
 
 
-def run(p, inp, sel, tau, merge, timeout, wrap=()):
+def run(p, inp, sel, tau, merge, timeout, wrap=(), cut_search=None):
     from pymeshlab_acd import batch
     with tempfile.TemporaryDirectory() as tmp:
         out = pathlib.Path(tmp) / "o"
         opts = dict(batch.DEFAULTS, tau=tau, cut_plane_selection=sel, merge_parts=merge, max_hull_vertices=0,
                     formats=["obj"], timeout=timeout, cache=False)   # timed: decomposed every time
+        if cut_search:
+            opts["cut_search"] = cut_search
         if wrap:
             opts.update(wrap_alpha=float(wrap[0]), wrap_offset=float(wrap[1]))
         rec = batch.run_child(str(p), str(out), opts)
@@ -197,6 +199,9 @@ def main():
     ap.add_argument("--settings", default="best:2:0,best:2:1,bisector:2:1,bisector:3:1")
     ap.add_argument("--out", default=str(REPO / "out" / "study.jsonl"))
     ap.add_argument("--timeout", type=int, default=900)
+    ap.add_argument("--cut-search", choices=("fast", "thorough"),
+                    help="our settings' cut_search (default: the product's); rows do not record it, so keep "
+                         "them in a file of their own")
     ap.add_argument("--sample", type=int, default=20, help="meshes of the peers' sample to run (20 or 60)")
     ap.add_argument("--set", choices=("robots", "objects"), default="robots",
                     help="the robot corpus's sample, or the meshes that are not robot links (bench/object_set.py)")
@@ -221,7 +226,8 @@ def main():
                 row = dict(mesh=name, setting=s, **run_peer(s, inp, args.timeout))
             else:
                 sel, tau, merge, *wrap = s.split(":")
-                row = dict(mesh=name, setting=s, **run(p, inp, sel, float(tau), merge == "1", args.timeout, wrap))
+                row = dict(mesh=name, setting=s, **run(p, inp, sel, float(tau), merge == "1", args.timeout, wrap,
+                                                         args.cut_search))
             rows.append(row)
             with out.open("a") as f:
                 f.write(json.dumps(row) + "\n")
