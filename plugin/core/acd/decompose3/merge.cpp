@@ -290,13 +290,13 @@ private:
 	// spans, lies farther than the bar from both), and their union is the two solids side by side.
 	void near_across_solids()
 	{
+		if (std::none_of(D.nodes.begin(), D.nodes.end(), [](const Node& n) { return n.solids; })) return;   // one solid
 		std::vector<std::set<std::string>> solids(groups.size());
-		std::vector<std::array<Vec3, 2>>   box(groups.size());
+		std::vector<Eigen::AlignedBox3d>   box(groups.size());
 		for (int g = 0; g < (int) groups.size(); ++g) {
 			if (!groups[g].alive) continue;
 			for (int l : groups[g].leaves) solids[g].insert(solid_of(l));
-			box[g] = {groups[g].part.mesh.V[0], groups[g].part.mesh.V[0]};
-			for (const Vec3& v : groups[g].part.mesh.V) box[g][0] = box[g][0].cwiseMin(v), box[g][1] = box[g][1].cwiseMax(v);
+			box[g] = bounding_box(groups[g].part.mesh.V);
 		}
 		const double gap = 2 * bar();
 		for (int a = 0; a < (int) groups.size(); ++a)
@@ -304,7 +304,8 @@ private:
 				if (!groups[a].alive || !groups[b].alive || solids[a].count("") || solids[b].count("")) continue;
 				bool apart = true;
 				for (const std::string& x : solids[a]) apart &= !solids[b].count(x);
-				const bool near = ((box[a][0] - box[b][1]).array() <= gap).all() && ((box[b][0] - box[a][1]).array() <= gap).all();
+				const bool near = ((box[a].min() - box[b].max()).array() <= gap).all() &&
+				                  ((box[b].min() - box[a].max()).array() <= gap).all();
 				if (!apart || !near) continue;
 				nbr[a].insert(b);
 				nbr[b].insert(a);

@@ -14,11 +14,12 @@ namespace acd {
 // are leaves of different solids of the input (an assembly's pieces, split apart first) whose boxes come
 // within twice the certificate's bar of each other. Greedily, the neighbouring pair whose union is least
 // concave is merged, while the union has no cavity and joins no shells but along the cuts (two solids
-// side by side stay two shells of one part) and passes the certificate `measure` names: its hull's reach beyond it certified within tau (to 1% of tau); with
-// MergeMeasure::Concavity also the paper's concavity at most tau, the cuts' own certificate. A part
-// merged by its hull alone is marked `hull_certified`. Unions are exact (CGAL corefinement), so the
-// parts stay an exact partition of the solid. The cut tree is kept as it is; each merged part is appended as a node
-// whose `merged` lists the leaves it unites, and those leaves point to it with `part`. Leaves over
+// side by side stay two shells of one part) and passes the certificate `measure` names: its hull's
+// reach beyond it certified within tau (to 1% of tau); with MergeMeasure::Concavity also the paper's
+// concavity at most tau, the cuts' own certificate. A part merged by its hull alone is marked
+// `hull_certified`. Unions are exact (CGAL corefinement), so the parts stay an exact partition of the
+// solid. The cut tree is kept as it is; each merged part is appended as a node whose `merged` lists the
+// leaves it unites, and those leaves point to it with `part`. Leaves over
 // tau (uncut) are never merged. With `seconds` > 0 merging stops once that long has passed (the parts
 // stay a certified partition; D.merge_time_limit_reached says so). Returns the number of merges.
 //

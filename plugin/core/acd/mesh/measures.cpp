@@ -40,15 +40,16 @@ void append(TriMesh& to, const TriMesh& from)
 	for (const Tri& t : from.F) to.F.push_back({t[0] + o, t[1] + o, t[2] + o});
 }
 
+Eigen::AlignedBox3d bounding_box(const std::vector<Vec3>& pts)
+{
+	Eigen::AlignedBox3d box;
+	for (const Vec3& p : pts) box.extend(p);
+	return box;
+}
+
 double bbox_diagonal(const std::vector<Vec3>& pts)
 {
-	if (pts.empty()) return 0;
-	Vec3 lo = pts[0], hi = pts[0];
-	for (const Vec3& p : pts) {
-		lo = lo.cwiseMin(p);
-		hi = hi.cwiseMax(p);
-	}
-	return (hi - lo).norm();
+	return pts.empty() ? 0 : bounding_box(pts).diagonal().norm();
 }
 
 std::vector<Vec3> finite_vertices(const TriMesh& m)

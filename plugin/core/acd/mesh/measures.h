@@ -12,7 +12,9 @@ double signed_volume(const TriMesh& m);
 double surface_area(const TriMesh& m);
 // Adds `from`'s vertices and faces to `to` (disjoint union).
 void append(TriMesh& to, const TriMesh& from);
-double bbox_diagonal(const std::vector<Vec3>& pts);
+// The points' axis-aligned bounding box (empty for no points), and its diagonal's length (0).
+Eigen::AlignedBox3d bounding_box(const std::vector<Vec3>& pts);
+double              bbox_diagonal(const std::vector<Vec3>& pts);
 // The vertices with finite coordinates, and their bounding box (empty when there are none).
 std::vector<Vec3>   finite_vertices(const TriMesh& m);
 Eigen::AlignedBox3d finite_box(const TriMesh& m);
