@@ -152,32 +152,15 @@ private:
 		Decomposition& P = *found;
 		if (D.proxy_searches == 1) D.pick_rule = P.pick_rule;   // the rule of the solid's own search
 		absorb(P);
-		D.merges -= P.merges;   // the proxy's merges count as unite_parts makes them on the solid
+		D.merges -= P.merges;   // the proxy's merges count as certify makes them on the solid
 		std::vector<int>   leaves;
 		std::map<int, int> reached;   // the proxy's leaves the replay reached: their nodes in D
 		report("Cutting the mesh by the planes found on its simplified copy");
 		replay(at, P, px->distance, leaves, reached);
 		report("Certifying every part on the mesh itself");
-		const std::vector<char> united = unite_parts(P, reached);
-		std::vector<int> rest;
+		std::map<int, MeasuredPtr> failed = certify(P, reached, leaves);
+		std::vector<int>           again;
 		for (int l : leaves)
-			if (!united[l]) rest.push_back(l);
-		// The largest first, so that no core is left measuring one alone at the end.
-		std::vector<int> by_size = rest;
-		std::stable_sort(by_size.begin(), by_size.end(), [&](int a, int b) { return D.nodes[a].mesh.F.size() > D.nodes[b].mesh.F.size(); });
-		// A part that fails keeps its measure: its search starts from it.
-		std::vector<MeasuredPtr> measures(by_size.size());
-		parallel_for(by_size.size(), [&](size_t i) {
-			Node&       n  = D.nodes[by_size[i]];
-			MeasuredPtr ms = measure_node(n, keep, o.tau);
-			stop_by_hull(n, *ms, o);   // as the cuts would stop on it
-			if (needs_search(n)) measures[i] = std::move(ms);
-		});
-		std::map<int, MeasuredPtr> failed;
-		for (size_t i = 0; i < by_size.size(); ++i)
-			if (measures[i]) failed[by_size[i]] = std::move(measures[i]);
-		std::vector<int> again;
-		for (int l : rest)
 			if (failed.count(l)) again.push_back(l);
 		if (!D.time_limit_reached) search_again(again, failed, level, merge);
 	}
@@ -288,19 +271,34 @@ private:
 		merge_parts_further(D, o.tau, across, o.progress, left(), memo, o.merge_measure);
 	}
 
-	// The proxy's merged parts made of the solid's leaves (all reached), glued on the cuts between
-	// them; each union that passes the certificate becomes a merged part. Which leaves it took.
-	std::vector<char> unite_parts(const Decomposition& P, const std::map<int, int>& reached)
+	// Every leaf of the solid certified, or united with others as the proxy's merged parts unite them:
+	// each such union that passes the certificate becomes a merged part. The unions and the other
+	// leaves are measured on all cores at once, the largest first, so that no core waits for one large
+	// union; the leaves of a union refused are measured after. The leaves that fail, with their measure
+	// (a part's search starts from it).
+	std::map<int, MeasuredPtr> certify(const Decomposition& P, const std::map<int, int>& reached, const std::vector<int>& leaves)
 	{
-		std::vector<std::vector<int>> groups;
-		for (int p : P.parts()) {
-			std::vector<int> g;
-			for (int l : P.nodes[p].merged)
-				if (reached.count(l)) g.push_back(reached.at(l));
-			if (g.size() > 1 && g.size() == P.nodes[p].merged.size()) groups.push_back(std::move(g));
+		const std::vector<std::vector<int>> groups = proxy_groups(P, reached);
+		std::vector<char>                   grouped(D.nodes.size(), 0);
+		for (const std::vector<int>& g : groups)
+			for (int l : g) grouped[l] = 1;
+		// Tasks: group k as -1 - k, a leaf outside every group as its id; by faces, the largest first.
+		std::vector<std::pair<size_t, int>> tasks;
+		for (size_t k = 0; k < groups.size(); ++k) {
+			size_t faces = 0;
+			for (int l : groups[k]) faces += D.nodes[l].mesh.F.size();
+			tasks.push_back({faces, -1 - (int) k});
 		}
+		for (int l : leaves)
+			if (!grouped[l]) tasks.push_back({D.nodes[l].mesh.F.size(), l});
+		std::stable_sort(tasks.begin(), tasks.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
 		std::vector<std::vector<Node>> unions(groups.size());
-		parallel_for(groups.size(), [&](size_t i) { unions[i] = united_pieces(groups[i]); });
+		std::vector<MeasuredPtr>       measured(D.nodes.size());
+		parallel_for(tasks.size(), [&](size_t i) {
+			const int t = tasks[i].second;
+			if (t < 0) unions[-1 - t] = united_pieces(groups[-1 - t]);
+			else measured[t] = measure_leaf(t);
+		});
 		std::vector<char> took(D.nodes.size(), 0);
 		for (std::vector<Node>& pieces : unions)
 			for (Node& n : pieces) {
@@ -309,7 +307,38 @@ private:
 				D.merges += (int) n.merged.size() - 1;
 				D.nodes.push_back(std::move(n));
 			}
-		return took;
+		std::vector<int> left;   // the leaves of unions refused, the largest first
+		for (int l : leaves)
+			if (grouped[l] && !took[l]) left.push_back(l);
+		std::stable_sort(left.begin(), left.end(), [&](int a, int b) { return D.nodes[a].mesh.F.size() > D.nodes[b].mesh.F.size(); });
+		parallel_for(left.size(), [&](size_t i) { measured[left[i]] = measure_leaf(left[i]); });
+		std::map<int, MeasuredPtr> failed;
+		for (int l : leaves)
+			if (measured[l]) failed[l] = std::move(measured[l]);
+		return failed;
+	}
+
+	// Leaf l measured on the solid and stopped by its hull as the cuts would stop it; its measure if it
+	// fails the certificate, else none.
+	MeasuredPtr measure_leaf(int l)
+	{
+		Node&       n  = D.nodes[l];
+		MeasuredPtr ms = measure_node(n, keep, o.tau);
+		stop_by_hull(n, *ms, o);
+		return needs_search(n) ? ms : nullptr;
+	}
+
+	// The proxy's merged parts as groups of the solid's leaves: those whose leaves the replay all reached.
+	static std::vector<std::vector<int>> proxy_groups(const Decomposition& P, const std::map<int, int>& reached)
+	{
+		std::vector<std::vector<int>> groups;
+		for (int p : P.parts()) {
+			std::vector<int> g;
+			for (int l : P.nodes[p].merged)
+				if (reached.count(l)) g.push_back(reached.at(l));
+			if (g.size() > 1 && g.size() == P.nodes[p].merged.size()) groups.push_back(std::move(g));
+		}
+		return groups;
 	}
 
 	// A proxy's merged part on the solid: its leaves united whole if that passes, else in pieces, two
