@@ -272,10 +272,10 @@ private:
 	}
 
 	// Every leaf of the solid certified, or united with others as the proxy's merged parts unite them:
-	// each such union that passes the certificate becomes a merged part. The unions and the other
-	// leaves are measured on all cores at once, the largest first, so that no core waits for one large
-	// union; the leaves of a union refused are measured after. The leaves that fail, with their measure
-	// (a part's search starts from it).
+	// each such union that passes the certificate becomes a merged part, and the leaves of a union
+	// refused are measured by the same task. The unions and the other leaves are measured on all cores
+	// at once, the largest first, so that no core waits for one large union. The leaves that fail, with
+	// their measure (a part's search starts from it).
 	std::map<int, MeasuredPtr> certify(const Decomposition& P, const std::map<int, int>& reached, const std::vector<int>& leaves)
 	{
 		const std::vector<std::vector<int>> groups = proxy_groups(P, reached);
@@ -296,22 +296,24 @@ private:
 		std::vector<MeasuredPtr>       measured(D.nodes.size());
 		parallel_for(tasks.size(), [&](size_t i) {
 			const int t = tasks[i].second;
-			if (t < 0) unions[-1 - t] = united_pieces(groups[-1 - t]);
-			else measured[t] = measure_leaf(t);
+			if (t >= 0) {
+				measured[t] = measure_leaf(t);
+				return;
+			}
+			const std::vector<int>& g = groups[-1 - t];
+			unions[-1 - t]            = united_pieces(g);
+			std::set<int> took;
+			for (const Node& n : unions[-1 - t]) took.insert(n.merged.begin(), n.merged.end());
+			for (int l : g)
+				if (!took.count(l)) measured[l] = measure_leaf(l);
 		});
-		std::vector<char> took(D.nodes.size(), 0);
 		for (std::vector<Node>& pieces : unions)
 			for (Node& n : pieces) {
 				const int id = (int) D.nodes.size();
-				for (int l : n.merged) took[l] = 1, D.nodes[l].part = id;
+				for (int l : n.merged) D.nodes[l].part = id;
 				D.merges += (int) n.merged.size() - 1;
 				D.nodes.push_back(std::move(n));
 			}
-		std::vector<int> left;   // the leaves of unions refused, the largest first
-		for (int l : leaves)
-			if (grouped[l] && !took[l]) left.push_back(l);
-		std::stable_sort(left.begin(), left.end(), [&](int a, int b) { return D.nodes[a].mesh.F.size() > D.nodes[b].mesh.F.size(); });
-		parallel_for(left.size(), [&](size_t i) { measured[left[i]] = measure_leaf(left[i]); });
 		std::map<int, MeasuredPtr> failed;
 		for (int l : leaves)
 			if (measured[l]) failed[l] = std::move(measured[l]);
