@@ -15,6 +15,7 @@ memory of the child, hulls, and the two-sided hull error by the neutral acd_metr
 Writes bench/results/scale_scan.md, bench/results/scale_CAD.md and docs/scale.png.
 """
 import argparse
+import hashlib
 import json
 import os
 import pathlib
@@ -34,14 +35,15 @@ METHODS = [("ours", "defaults", {}), ("coacd", "threshold 0.05", {"threshold": 0
 
 # Meshes are made in a child process: pymeshlab's filters hold the GIL and much memory. A series is its
 # first mesh (the watertight bunny scan, or the CAD link as given) and three subdivisions of it: Loop for
-# the scan, midpoints for CAD (the same flat faces).
+# the scan, midpoints for CAD (the same flat faces). Screened Poisson runs on one thread: on several its
+# surface differs from run to run, and so would the series.
 MAKE_SERIES = textwrap.dedent("""
     import pathlib, sys, pymeshlab
     series, src, out = sys.argv[1], sys.argv[2], pathlib.Path(sys.argv[3])
     ms = pymeshlab.MeshSet()
     if series == "scan":
         ms.load_new_mesh(str(pathlib.Path(pymeshlab.__file__).parent / "tests" / "sample_meshes" / "bunny.obj"))
-        ms.generate_surface_reconstruction_screened_poisson(depth=8)
+        ms.generate_surface_reconstruction_screened_poisson(depth=8, threads=1)
         ms.meshing_decimation_quadric_edge_collapse(targetfacenum=23000, preservetopology=True)
         ms.meshing_remove_unreferenced_vertices()
         subdivide = ms.meshing_surface_subdivision_loop
@@ -84,8 +86,11 @@ def series(which):
     CACHE.mkdir(parents=True, exist_ok=True)
     out = []
     if "scan" in which:
-        if not (CACHE / "scan_3.obj").exists():
+        recipe = hashlib.sha256(MAKE_SERIES.encode()).hexdigest()[:16]   # remade when the recipe changes
+        made = CACHE / "scan_recipe.txt"
+        if not made.exists() or made.read_text().strip() != recipe or not (CACHE / "scan_3.obj").exists():
             subprocess.run([sys.executable, "-c", MAKE_SERIES, "scan", "", str(CACHE)], check=True)
+            made.write_text(recipe + "\n")
         out += [("scan", CACHE / f"scan_{k}.obj", None) for k in range(4)]
     if "CAD" in which:
         link = cad_link()
