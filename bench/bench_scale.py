@@ -82,23 +82,24 @@ def cad_link():
     raise SystemExit("no closed robot link of 3k to 12k faces in the corpus")
 
 
+def make(name, src=""):
+    """The series `name` in the cache, made again when its source or the recipe has changed."""
+    key = f"{src} {hashlib.sha256(MAKE_SERIES.encode()).hexdigest()[:16]}"
+    made = CACHE / f"{name}_made.txt"
+    if not made.exists() or made.read_text().strip() != key or not (CACHE / f"{name}_3.obj").exists():
+        subprocess.run([sys.executable, "-c", MAKE_SERIES, name, src, str(CACHE)], check=True)
+        made.write_text(key + "\n")
+    return [CACHE / f"{name}_{k}.obj" for k in range(4)]
+
+
 def series(which):
     CACHE.mkdir(parents=True, exist_ok=True)
     out = []
     if "scan" in which:
-        recipe = hashlib.sha256(MAKE_SERIES.encode()).hexdigest()[:16]   # remade when the recipe changes
-        made = CACHE / "scan_recipe.txt"
-        if not made.exists() or made.read_text().strip() != recipe or not (CACHE / "scan_3.obj").exists():
-            subprocess.run([sys.executable, "-c", MAKE_SERIES, "scan", "", str(CACHE)], check=True)
-            made.write_text(recipe + "\n")
-        out += [("scan", CACHE / f"scan_{k}.obj", None) for k in range(4)]
+        out += [("scan", p, None) for p in make("scan")]
     if "CAD" in which:
         link = cad_link()
-        made = CACHE / "cad_link.txt"
-        if not made.exists() or made.read_text().strip() != str(link) or not (CACHE / "cad_3.obj").exists():
-            subprocess.run([sys.executable, "-c", MAKE_SERIES, "cad", str(link), str(CACHE)], check=True)
-            made.write_text(str(link) + "\n")
-        out += [("CAD", CACHE / f"cad_{k}.obj", link) for k in range(4)]
+        out += [("CAD", p, link) for p in make("cad", str(link))]
     return out
 
 
