@@ -163,3 +163,49 @@ TEST_CASE("proxy search: a part's search that starts from its certificate's meas
 		}
 	}
 }
+
+namespace {
+
+// A tree of `parts` leaves under one root, the first `over` of them past tau (by their hull's reach).
+Decomposition plan(int parts, int over, double tau = 1)
+{
+	Decomposition P;
+	P.tau = tau;
+	Node root;
+	root.path = "0";
+	P.nodes.push_back(root);
+	for (int k = 0; k < parts; ++k) {
+		Node n;
+		n.parent              = 0;
+		n.path                = "0" + std::to_string(k);
+		n.concavity           = k < over ? 1.5 * tau : 0.5 * tau;
+		n.hull_distance       = n.concavity;
+		n.hull_distance_bound = n.concavity;
+		P.nodes.push_back(n);
+	}
+	P.nodes[0].child[0] = 1;   // the root is no leaf (the tree's shape matters not here)
+	return P;
+}
+
+} // namespace
+
+TEST_CASE("proxy plans: a part over tau on the proxy counts as two, not as a lost tree")
+{
+	REQUIRE(plan(53, 1).parts().size() == 53);
+	REQUIRE_FALSE(plan(53, 1).tau_convex());
+	REQUIRE(plan(92, 0).tau_convex());
+	// better() keeps the certified tree whatever its size; a plan of 53 parts with one to search again
+	// (54 at least) beats 92 certified parts.
+	CHECK(better(plan(92, 0), plan(53, 1)));
+	CHECK(better_plan(plan(53, 1), plan(92, 0), 1));
+	CHECK_FALSE(better_plan(plan(92, 0), plan(53, 1), 1));
+	// Each part over tau needs a cut more: 3 parts with 2 over (5) lose to 4 certified parts.
+	CHECK(better_plan(plan(4, 0), plan(3, 2), 1));
+	CHECK_FALSE(better_plan(plan(3, 2), plan(4, 0), 1));
+	// As many parts needed: the fewer parts.
+	CHECK(better_plan(plan(4, 1), plan(5, 0), 1));
+	CHECK_FALSE(better_plan(plan(5, 0), plan(4, 1), 1));
+	// Judged at the solid's tau, not the proxy's own: parts at 1.5 proxy-tau are within 2 of them.
+	CHECK(better_plan(plan(3, 3), plan(4, 0), 2));
+	CHECK_FALSE(better_plan(plan(3, 3), plan(4, 0), 1));
+}

@@ -1,5 +1,4 @@
 #include "acd/decompose3/decompose_mesh.h"
-#include "acd/decompose3/proxy_search.h"
 
 #include <algorithm>
 
@@ -19,12 +18,11 @@ MeshDecomposition decompose_mesh(const TriMesh& mesh, const PrepareOptions& prep
 	const double     limit   = r.options.time_limit_seconds;
 	const long       crossings = r.prepared.solid.self_intersections;
 	if (crossings > 0) bounded.time_limit_seconds = std::min(limit > 0 ? limit : kSelfCrossingTry, kSelfCrossingTry);
-	// A large solid that crosses itself cannot be searched on a proxy (proxy_search.h), and searched as
-	// it is it would use up the try: it is wrapped at once.
-	const int above = ProxySettings().above;
-	if (crossings > 0 && (long) r.prepared.solid.mesh.F.size() > above)
+	// A solid that crosses itself is searched as it is (its proxy would cross too, proxy_search.h);
+	// a large one would use up the try: it is wrapped at once.
+	if (crossings > 0 && (long) r.prepared.solid.mesh.F.size() > kSelfCrossingFaces)
 		r.fallback = "the mesh intersects itself (" + std::to_string(crossings) + " face pairs) and has more than " +
-		             std::to_string(above) + " faces";
+		             std::to_string(kSelfCrossingFaces) + " faces";
 	else
 		try {
 			r.d = decompose(r.prepared.solid, bounded);

@@ -21,12 +21,14 @@ struct MeshDecomposition
 // prepare_solid, then decompose. Under Preprocessing::Auto a valid solid that crosses itself is cut
 // as given for at most kSelfCrossingTry seconds (cuts through a crossing can peel slivers for long);
 // when a cut opens a part there, or its parts fall short of tau, it is alpha wrapped and cut again. One
-// with more faces than the proxy search takes (ProxySettings::above) is wrapped without the try.
+// with more than kSelfCrossingFaces faces is wrapped without the try (searched as it is, it would use
+// the try up).
 // `options_for` gives the options for a prepared solid (tau as a share of its size, say); it is called
 // again for the wrap when the solid as given is given up.
 using OptionsFor = std::function<DecomposeOptions(const PreparedSolid&)>;
 MeshDecomposition decompose_mesh(const TriMesh& mesh, const PrepareOptions& prepare, const OptionsFor& options_for);
 
-constexpr double kSelfCrossingTry = 120;
+constexpr double kSelfCrossingTry   = 120;
+constexpr long   kSelfCrossingFaces = 100000;
 
 } // namespace acd

@@ -195,7 +195,7 @@ private:
 			}
 			if (merge) merge_parts(P, o.tau, po.progress, left(), both ? &unions : memo, o.merge_measure);
 			P.pick_rule = rule;
-			if (!kept || better(P, *kept)) kept = std::move(P);
+			if (!kept || better_plan(P, *kept, o.tau)) kept = std::move(P);
 		}
 		return kept;
 	}
@@ -600,6 +600,19 @@ private:
 };
 
 } // namespace
+
+bool better_plan(const Decomposition& a, const Decomposition& b, double tau)
+{
+	const auto needed = [tau](const Decomposition& P) {
+		size_t n = 0;
+		for (int i : P.parts()) n += certified(P.nodes[i], tau) ? 1 : 2;
+		return n;
+	};
+	const size_t na = needed(a), nb = needed(b);
+	if (na != nb) return na < nb;
+	if (a.parts().size() != b.parts().size()) return a.parts().size() < b.parts().size();
+	return a.max_hull_distance() < b.max_hull_distance() - 1e-9;
+}
 
 Decomposition search(const Solid& solid, const DecomposeOptions& o, const ProxySettings& ps, MergeMemo* memo,
                      MeasureMemo* measures)

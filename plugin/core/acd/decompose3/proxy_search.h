@@ -12,7 +12,7 @@ namespace acd {
 
 struct ProxySettings
 {
-	int    above  = 100000;  // solids with more faces are searched on a proxy
+	int    above  = 30000;   // solids with more faces are searched on a proxy
 	int    faces  = 20000;   // the first proxy's faces; each finer one has four times as many
 	double error  = 0.125;   // decimation's error bar, a share of tau
 	double widest = 0.25;    // a proxy farther from the solid than this share of tau is refined
@@ -28,5 +28,12 @@ class MeasureMemo;
 // (measure_memo.h).
 Decomposition search(const Solid& solid, const DecomposeOptions& options, const ProxySettings& settings = {},
                      MergeMemo* memo = nullptr, MeasureMemo* measures = nullptr);
+
+// Of two cut trees of one proxy, whether `a` is the better plan: the fewer parts once each part not
+// within `tau` (the solid's) counts twice (on the solid it is certified, or searched again and cut at
+// least once more), then the fewer parts, then the nearer hulls. A plan is not thrown away, as a final
+// tree is, for one part a hair over tau on the proxy. (The proxy's trees are cut below tau and merged at
+// it, so their own tau_convex() says little.)
+bool better_plan(const Decomposition& a, const Decomposition& b, double tau);
 
 } // namespace acd
