@@ -83,3 +83,23 @@ TEST_CASE("decimate: a flat-sided solid keeps its shape exactly; a tiny error ba
 	const TriMesh sphere = shapes::sphere(3, 1);
 	CHECK(decimate(sphere, 10, 1e-9).mesh.F.size() == sphere.F.size());
 }
+
+TEST_CASE("decimate: the same surface in another order of its vertices and faces gives the same copy")
+{
+	const TriMesh fine = shapes::torus(1, 0.4, 120, 60);
+	const Decimated d  = decimate(fine, (int) fine.F.size() / 10, 0.01);
+	// Vertices shuffled (a fixed permutation), faces reversed and each started at another corner.
+	std::vector<int> perm(fine.V.size());
+	for (size_t i = 0; i < perm.size(); ++i) perm[i] = (int) ((i * 7919) % perm.size());
+	REQUIRE(std::set<int>(perm.begin(), perm.end()).size() == perm.size());
+	TriMesh shuffled;
+	shuffled.V.resize(fine.V.size());
+	for (size_t i = 0; i < perm.size(); ++i) shuffled.V[perm[i]] = fine.V[i];
+	for (size_t f = fine.F.size(); f-- > 0;) {
+		const Tri& t = fine.F[f];
+		shuffled.F.push_back({perm[t[(f + 1) % 3]], perm[t[(f + 2) % 3]], perm[t[f % 3]]});
+	}
+	const Decimated again = decimate(shuffled, (int) fine.F.size() / 10, 0.01);
+	CHECK(again.mesh.V == d.mesh.V);
+	CHECK(again.mesh.F == d.mesh.F);
+}

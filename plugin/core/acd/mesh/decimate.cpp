@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <tuple>
 
 namespace acd {
 
@@ -268,12 +269,37 @@ private:
 	}
 };
 
+// The mesh listed in an order of its own: vertices by position (x, then y, then z; coincident ones in
+// the order given), each face from its least vertex on (the same turn), faces sorted. Every order of
+// the same surface's vertices and faces lists the same, so the collapses tie and sum alike.
+TriMesh canonical(const TriMesh& m)
+{
+	std::vector<int> by(m.V.size());
+	for (size_t i = 0; i < by.size(); ++i) by[i] = (int) i;
+	std::stable_sort(by.begin(), by.end(), [&](int a, int b) {
+		const Vec3 &p = m.V[a], &q = m.V[b];
+		return std::make_tuple(p.x(), p.y(), p.z()) < std::make_tuple(q.x(), q.y(), q.z());
+	});
+	std::vector<int> rank(by.size());
+	TriMesh          out;
+	out.V.reserve(by.size());
+	for (size_t i = 0; i < by.size(); ++i) rank[by[i]] = (int) i, out.V.push_back(m.V[by[i]]);
+	out.F.reserve(m.F.size());
+	for (const Tri& t : m.F) {
+		Tri r = {rank[t[0]], rank[t[1]], rank[t[2]]};
+		std::rotate(r.begin(), std::min_element(r.begin(), r.end()), r.end());
+		out.F.push_back(r);
+	}
+	std::sort(out.F.begin(), out.F.end());
+	return out;
+}
+
 } // namespace
 
 Decimated decimate(const TriMesh& m, int target_faces, double max_error)
 {
 	Decimated out;
-	Decimator d(m, max_error);
+	Decimator d(canonical(m), max_error);
 	while (d.faces() > (size_t) std::max(target_faces, 4) && out.passes < 1000 && d.round(std::max(target_faces, 4))) ++out.passes;
 	out.mesh = d.mesh();
 	return out;
