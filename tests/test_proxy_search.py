@@ -1,4 +1,4 @@
-"""The search on a decimated copy: a mesh over the proxy threshold (30,000 faces) is searched on a copy,
+"""The search on a decimated copy: a mesh over the proxy threshold (100,000 faces) is searched on a copy,
 and every part is still cut from the mesh itself and certified on it.
 
 Re-measured here, sharing no code with the core: the parts are closed and 2-manifold, their volumes sum
