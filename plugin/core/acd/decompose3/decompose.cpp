@@ -737,11 +737,16 @@ bool stop_by_hull(Node& n, const Measured& ms, const DecomposeOptions& opt)
 	return true;
 }
 
+bool fewer_parts(const Decomposition& a, const Decomposition& b)
+{
+	if (a.parts().size() != b.parts().size()) return a.parts().size() < b.parts().size();
+	return a.max_hull_distance() < b.max_hull_distance() - 1e-9;
+}
+
 bool better(const Decomposition& a, const Decomposition& b)
 {
 	if (a.tau_convex() != b.tau_convex()) return a.tau_convex();
-	if (a.parts().size() != b.parts().size()) return a.parts().size() < b.parts().size();
-	return a.max_hull_distance() < b.max_hull_distance() - 1e-9;
+	return fewer_parts(a, b);
 }
 
 namespace {

@@ -130,9 +130,11 @@ inline bool certify_merged(Node& n, double tau, MergeMeasure measure)
 
 Decomposition decompose(const Solid& solid, const DecomposeOptions& options);
 
-// Of two searches of one solid, whether `a` is the better: certified first, then the fewer parts, then
-// the nearer hulls (within rounding: a tie keeps the first).
+// Of two searches of one solid, whether `a` is the better: certified first, then fewer_parts().
 bool better(const Decomposition& a, const Decomposition& b);
+// Whether `a` has the fewer parts, or as many and the nearer hulls (within rounding: a tie keeps the
+// first).
+bool fewer_parts(const Decomposition& a, const Decomposition& b);
 
 // n's references to other nodes (parent, children, merged part, merged leaves) renumbered: old id k
 // becomes id[k] (-1 stays -1).

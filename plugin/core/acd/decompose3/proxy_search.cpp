@@ -610,8 +610,7 @@ bool better_plan(const Decomposition& a, const Decomposition& b, double tau)
 	};
 	const size_t na = needed(a), nb = needed(b);
 	if (na != nb) return na < nb;
-	if (a.parts().size() != b.parts().size()) return a.parts().size() < b.parts().size();
-	return a.max_hull_distance() < b.max_hull_distance() - 1e-9;
+	return fewer_parts(a, b);
 }
 
 Decomposition search(const Solid& solid, const DecomposeOptions& o, const ProxySettings& ps, MergeMemo* memo,

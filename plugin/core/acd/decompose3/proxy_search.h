@@ -31,7 +31,7 @@ Decomposition search(const Solid& solid, const DecomposeOptions& options, const 
 
 // Of two cut trees of one proxy, whether `a` is the better plan: the fewer parts once each part not
 // within `tau` (the solid's) counts twice (on the solid it is certified, or searched again and cut at
-// least once more), then the fewer parts, then the nearer hulls. A plan is not thrown away, as a final
+// least once more), then fewer_parts(). A plan is not thrown away, as a final
 // tree is, for one part a hair over tau on the proxy. (The proxy's trees are cut below tau and merged at
 // it, so their own tau_convex() says little.)
 bool better_plan(const Decomposition& a, const Decomposition& b, double tau);

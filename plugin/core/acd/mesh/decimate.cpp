@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <cmath>
 #include <tuple>
+#include <utility>
 
 namespace acd {
 
@@ -48,8 +49,8 @@ struct Collapse
 class Decimator
 {
 public:
-	Decimator(const TriMesh& m, double max_error)
-	    : V(m.V), F(m.F), Q(m.V.size()), bar(max_error * max_error), floor(1e-12 * std::pow(bbox_diagonal(m.V), 2))
+	Decimator(TriMesh m, double max_error)   // taken whole: decimate() hands it its own copy
+	    : V(std::move(m.V)), F(std::move(m.F)), Q(V.size()), bar(max_error * max_error), floor(1e-12 * std::pow(bbox_diagonal(V), 2))
 	{
 		for (const Tri& t : F) {
 			const Vec3   n    = (V[t[1]] - V[t[0]]).cross(V[t[2]] - V[t[0]]);
