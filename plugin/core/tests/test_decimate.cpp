@@ -103,3 +103,26 @@ TEST_CASE("decimate: the same surface in another order of its vertices and faces
 	CHECK(again.mesh.V == d.mesh.V);
 	CHECK(again.mesh.F == d.mesh.F);
 }
+
+TEST_CASE("decimate: the same surface in another pose gives the same copy, turned with it")
+{
+	// A torus bent and stretched so that its principal axes are its own (no two equal spreads).
+	TriMesh fine = shapes::torus(1, 0.4, 120, 60);
+	for (Vec3& p : fine.V) p = Vec3(1.4 * p.x(), p.y(), 0.7 * p.z() + 0.15 * p.x() * p.x() + 0.1 * p.y());
+	const Decimated d = decimate(fine, (int) fine.F.size() / 10, 0.01);
+	REQUIRE(d.mesh.F.size() <= fine.F.size() / 10);
+	int same = 0;
+	for (int k = 0; k < 5; ++k) {
+		const Eigen::Matrix3d R =
+		    Eigen::AngleAxisd(0.7 + k, Vec3(1, 2 - k, 0.5 * k).normalized()).toRotationMatrix();
+		TriMesh turned = fine;
+		for (Vec3& p : turned.V) p = R * p + Vec3(3, -2, 1);
+		const Decimated again = decimate(turned, (int) fine.F.size() / 10, 0.01);
+		if (again.mesh.F != d.mesh.F || again.mesh.V.size() != d.mesh.V.size()) continue;
+		double apart = 0;
+		for (size_t i = 0; i < d.mesh.V.size(); ++i)
+			apart = std::max(apart, (R.transpose() * (again.mesh.V[i] - Vec3(3, -2, 1)) - d.mesh.V[i]).norm());
+		same += apart < 1e-9;
+	}
+	CHECK(same == 5);
+}

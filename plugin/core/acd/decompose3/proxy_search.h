@@ -12,7 +12,7 @@ namespace acd {
 
 struct ProxySettings
 {
-	int    above  = 100000;  // solids with more faces are searched on a proxy
+	int    above  = 30000;   // solids with more faces are searched on a proxy
 	int    faces  = 20000;   // the first proxy's faces; each finer one has four times as many
 	double error  = 0.125;   // decimation's error bar, a share of tau
 	double widest = 0.25;    // a proxy farther from the solid than this share of tau is refined

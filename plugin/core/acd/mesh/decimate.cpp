@@ -270,6 +270,34 @@ private:
 	}
 };
 
+// The same surface in any pose, listed alike: where the shape's principal axes are its own
+// (PoseFrame::distinct), its vertices are turned into that frame; then they are snapped to a grid of a
+// power of two (about 1e-8 of the size; a rounding apart in two poses almost never straddles a step),
+// so every pose measures and ties its collapses on the same numbers. `back` undoes it.
+struct Framed
+{
+	TriMesh         mesh;
+	Eigen::Matrix3d axes = Eigen::Matrix3d::Identity();
+	Vec3            centre = Vec3::Zero();
+	double          step = 1;
+	Vec3            back(const Vec3& p) const { return axes.transpose() * (step * p + centre); }
+};
+
+Framed framed(const TriMesh& m)
+{
+	Framed          f;
+	const PoseFrame fr = pose_frame(m);
+	if (fr.distinct(0) && fr.distinct(1) && fr.distinct(2)) f.axes = fr.axes;
+	f.mesh.F = m.F;
+	f.mesh.V.reserve(m.V.size());
+	Eigen::AlignedBox3d box;
+	for (const Vec3& p : m.V) box.extend(f.mesh.V.emplace_back(f.axes * p));
+	f.centre = box.center();
+	f.step   = std::ldexp(1.0, std::ilogb(std::max(box.diagonal().norm(), 1e-300)) - 26);
+	for (Vec3& p : f.mesh.V) p = ((p - f.centre) / f.step).array().round().matrix();
+	return f;
+}
+
 // The mesh listed in an order of its own: vertices by position (x, then y, then z; coincident ones in
 // the order given), each face from its least vertex on (the same turn), faces sorted. Every order of
 // the same surface's vertices and faces lists the same, so the collapses tie and sum alike.
@@ -299,10 +327,12 @@ TriMesh canonical(const TriMesh& m)
 
 Decimated decimate(const TriMesh& m, int target_faces, double max_error)
 {
-	Decimated out;
-	Decimator d(canonical(m), max_error);
+	Decimated    out;
+	const Framed f = framed(m);
+	Decimator    d(canonical(f.mesh), max_error / f.step);
 	while (d.faces() > (size_t) std::max(target_faces, 4) && out.passes < 1000 && d.round(std::max(target_faces, 4))) ++out.passes;
 	out.mesh = d.mesh();
+	for (Vec3& p : out.mesh.V) p = f.back(p);
 	return out;
 }
 
