@@ -209,3 +209,24 @@ TEST_CASE("proxy plans: a part over tau on the proxy counts as two, not as a los
 	CHECK(better_plan(plan(3, 3), plan(4, 0), 2));
 	CHECK_FALSE(better_plan(plan(3, 3), plan(4, 0), 1));
 }
+
+TEST_CASE("proxy search: a node never needs less than its children, though its concavity came from the copy")
+{
+	// A bent, stretched torus finely triangulated: curved everywhere, so the copy's concavities are
+	// estimates, and its leaves are measured on the solid.
+	TriMesh m = shapes::torus(1, 0.35, 160, 64);
+	for (Vec3& p : m.V) p = Vec3(1.4 * p.x(), p.y(), 0.7 * p.z() + 0.3 * p.x() * p.x() + 0.1 * p.y());
+	const Solid   s = make_solid(m);
+	ProxySettings ps;
+	ps.above = 4000, ps.faces = 1500;
+	const Decomposition D = search(s, options(0.01 * extent(m.V)), ps);
+	REQUIRE(D.proxy_searches >= 1);
+	int inner = 0;
+	for (const Node& n : D.nodes)
+		for (int c : n.child)
+			if (c >= 0) {
+				++inner;
+				CHECK(D.nodes[c].concavity <= n.concavity);
+			}
+	CHECK(inner >= 8);
+}

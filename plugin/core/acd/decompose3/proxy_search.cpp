@@ -103,6 +103,7 @@ public:
 		D.nodes.push_back(std::move(root));
 		search_node(0, 0, o.merge_parts);
 		if (o.merge_parts && !retried.empty()) merge_across();
+		raise_to_children();
 		return D;
 	}
 
@@ -117,6 +118,20 @@ private:
 	std::vector<std::string>                    retried;   // the paths of the leaves searched again
 	std::set<std::string>                       as_is;     // those of them searched as they are
 	double                                      eps = 0;   // the width of a cut plane on the solid
+
+	// An inner node's concavity is the copy's widened by its distance: an estimate, which a child
+	// measured on the solid can pass. Raised to its children's, a node never needs less than its parts
+	// (the level of detail reads the tree so, coarse to fine).
+	void raise_to_children()
+	{
+		std::vector<int> order{0};   // preorder: a parent before its children
+		for (size_t i = 0; i < order.size(); ++i)
+			for (int c : D.nodes[order[i]].child)
+				if (c >= 0) order.push_back(c);
+		for (size_t i = order.size(); i-- > 0;)
+			for (int c : D.nodes[order[i]].child)
+				if (c >= 0) D.nodes[order[i]].concavity = std::max(D.nodes[order[i]].concavity, D.nodes[c].concavity);
+	}
 
 	// The time limit's rest (0: none).
 	double left() const
