@@ -41,7 +41,7 @@ HELP = dict(
     cut_search="thorough: grow the cut tree twice, cuts picked by the worse part's concavity (the paper) and by "
                "the parts both parts are estimated to need (also trying the planes across the part's principal axes), and "
                "keep the one with fewer parts (about twice the "
-               "time; a mesh of over 100,000 faces grows both on its simplified copy and certifies the better); fast: "
+               "time; a mesh of over 30,000 faces grows both on its simplified copy and certifies the better); fast: "
                "the first alone",
     max_hull_vertices="at most this many vertices per collision hull, on top of --engine's limits (0: none); a "
                       "reduced hull still contains its part",

@@ -40,7 +40,7 @@ std::vector<OptionChoice> cut_searches()
 	         "grow the cut tree twice, each cut picked by another rule (its worse part's concavity, as the paper; or "
 	         "the parts both its parts are estimated to need afterwards, with the planes across the part's principal axes "
 	         "among the candidates), merge both and keep the one with fewer parts "
-	         "(about twice the time; a mesh of over 100,000 faces grows both on its simplified copy and certifies the "
+	         "(about twice the time; a mesh of over 30,000 faces grows both on its simplified copy and certifies the "
 	         "better)"},
 	        {"fast", (int) CutSearch::Fast, "one cut tree, each cut picked by its worse part's concavity (the paper's "
 	                                        "greedy search)"}};
