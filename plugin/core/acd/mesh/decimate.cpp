@@ -273,10 +273,11 @@ private:
 // The same surface in any pose, listed alike: where the shape's principal axes are its own
 // (PoseFrame::distinct), its vertices are turned into that frame; then they are snapped to a grid of a
 // power of two (about 1e-8 of the size; a rounding apart in two poses almost never straddles a step),
-// so every pose measures and ties its collapses on the same numbers. `back` undoes it.
+// so every pose measures and ties its collapses on the same numbers. `back` undoes it. (The faces
+// stay the input's.)
 struct Framed
 {
-	TriMesh         mesh;
+	std::vector<Vec3> V;
 	Eigen::Matrix3d axes = Eigen::Matrix3d::Identity();
 	Vec3            centre = Vec3::Zero();
 	double          step = 1;
@@ -288,33 +289,32 @@ Framed framed(const TriMesh& m)
 	Framed          f;
 	const PoseFrame fr = pose_frame(m);
 	if (fr.distinct(0) && fr.distinct(1) && fr.distinct(2)) f.axes = fr.axes;
-	f.mesh.F = m.F;
-	f.mesh.V.reserve(m.V.size());
+	f.V.reserve(m.V.size());
 	Eigen::AlignedBox3d box;
-	for (const Vec3& p : m.V) box.extend(f.mesh.V.emplace_back(f.axes * p));
+	for (const Vec3& p : m.V) box.extend(f.V.emplace_back(f.axes * p));
 	f.centre = box.center();
 	f.step   = std::ldexp(1.0, std::ilogb(std::max(box.diagonal().norm(), 1e-300)) - 26);
-	for (Vec3& p : f.mesh.V) p = ((p - f.centre) / f.step).array().round().matrix();
+	for (Vec3& p : f.V) p = ((p - f.centre) / f.step).array().round().matrix();
 	return f;
 }
 
-// The mesh listed in an order of its own: vertices by position (x, then y, then z; coincident ones in
+// The mesh (vertices V, faces F) listed in an order of its own: vertices by position (x, then y, then z; coincident ones in
 // the order given), each face from its least vertex on (the same turn), faces sorted. Every order of
 // the same surface's vertices and faces lists the same, so the collapses tie and sum alike.
-TriMesh canonical(const TriMesh& m)
+TriMesh canonical(const std::vector<Vec3>& V, const std::vector<Tri>& F)
 {
-	std::vector<int> by(m.V.size());
+	std::vector<int> by(V.size());
 	for (size_t i = 0; i < by.size(); ++i) by[i] = (int) i;
 	std::stable_sort(by.begin(), by.end(), [&](int a, int b) {
-		const Vec3 &p = m.V[a], &q = m.V[b];
+		const Vec3 &p = V[a], &q = V[b];
 		return std::make_tuple(p.x(), p.y(), p.z()) < std::make_tuple(q.x(), q.y(), q.z());
 	});
 	std::vector<int> rank(by.size());
 	TriMesh          out;
 	out.V.reserve(by.size());
-	for (size_t i = 0; i < by.size(); ++i) rank[by[i]] = (int) i, out.V.push_back(m.V[by[i]]);
-	out.F.reserve(m.F.size());
-	for (const Tri& t : m.F) {
+	for (size_t i = 0; i < by.size(); ++i) rank[by[i]] = (int) i, out.V.push_back(V[by[i]]);
+	out.F.reserve(F.size());
+	for (const Tri& t : F) {
 		Tri r = {rank[t[0]], rank[t[1]], rank[t[2]]};
 		std::rotate(r.begin(), std::min_element(r.begin(), r.end()), r.end());
 		out.F.push_back(r);
@@ -329,7 +329,7 @@ Decimated decimate(const TriMesh& m, int target_faces, double max_error)
 {
 	Decimated    out;
 	const Framed f = framed(m);
-	Decimator    d(canonical(f.mesh), max_error / f.step);
+	Decimator    d(canonical(f.V, m.F), max_error / f.step);
 	while (d.faces() > (size_t) std::max(target_faces, 4) && out.passes < 1000 && d.round(std::max(target_faces, 4))) ++out.passes;
 	out.mesh = d.mesh();
 	for (Vec3& p : out.mesh.V) p = f.back(p);
