@@ -404,6 +404,20 @@ private:
 		return std::min(va, vb) < 1e-3 * D.nodes[id].volume && chip > opt.tau && rest >= 0.99 * D.nodes[id].concavity;
 	}
 
+	// A plane a hair above a face shaves off a film: a half far thinner than tau across the plane
+	// (kFilm), which has the plane's footprint, not the part's depth. It resolves none of the part's
+	// notches below the film, and the film, a shape with an outline and no thickness, may take as
+	// many parts as its outline's own notches ask. The film's side, or -1.
+	int film(const SplitOutcome& so, const Plane& pl) const
+	{
+		for (int s = 0; s < 2; ++s) {
+			double thick = 0;
+			for (const Vec3& v : so.parts[s].V) thick = std::max(thick, std::abs(pl.eval(v)));
+			if (thick < kFilm * opt.tau) return s;
+		}
+		return -1;
+	}
+
 	// A mesh's measure, from the memo when another search made it.
 	MeasuredPtr measure(const TriMesh& m) const
 	{
@@ -452,6 +466,10 @@ private:
 		t.smaller       = std::min(va, vb) / v0;
 		if (va < 1e-5 * v0 || vb < 1e-5 * v0) {
 			t.sliver = va < vb ? 0 : 1;
+			return;
+		}
+		if (const int f = film(t.so, t.so.plane); f >= 0) {
+			t.sliver = f;
 			return;
 		}
 		if (keep)
@@ -708,6 +726,7 @@ private:
 
 	static constexpr double kClearlyLess = 0.9;   // another plane's score must be below this times the bisector's
 	static constexpr double kNeedMargin  = 0.5;   // or its parts needed this many below the bisector's
+	static constexpr double kFilm = 0.05;     // a half thinner than this times tau across its plane is a film
 	static constexpr size_t kMaxDepth = 96;   // tree depth (path length) past which a node stays uncut
 	static constexpr int    kMaxFilms = 8;    // films dropped per node, so a node cannot loop
 };
