@@ -409,7 +409,8 @@ double to_triangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c)
 
 // How far the hull of `m` reaches beyond it, from points spread over the hull's triangles (`steps` per
 // edge), plus the farthest any hull point lies from its nearest sample: no hull point is farther.
-double hull_reach_sampled(const TriMesh& m, int steps)
+// `spacing` gets that last term (the samples alone reach no farther than the hull).
+double hull_reach_sampled(const TriMesh& m, int steps, double* spacing_out = nullptr)
 {
 	const ConvexHull h(m.V);
 	double           reach = 0, spacing = 0;
@@ -424,6 +425,7 @@ double hull_reach_sampled(const TriMesh& m, int steps)
 				reach = std::max(reach, near);
 			}
 	}
+	if (spacing_out) *spacing_out = spacing;
 	return reach + spacing;
 }
 
@@ -455,6 +457,44 @@ TEST_CASE("merge by hull distance: a slot narrower than tau stays in one part, i
 	}
 	CHECK(hull_only > 0);
 	for (int p : by_notches.parts()) CHECK((by_notches.nodes[p].concavity <= o.tau && !by_notches.nodes[p].hull_certified));
+}
+
+TEST_CASE("merge: a union's hull reach is measured once it comes first in line, not for every union; a union "
+          "whose reach is over tau never merges")
+{
+	// Six cubes in a row, 0.01 apart: one hull stands for any run of them within tau. Each merge makes
+	// the pairs measured with its two parts moot, and their reaches are never measured.
+	TriMesh row = shapes::box(Vec3(0, 0, 0), Vec3(1, 1, 1));
+	for (int k = 1; k < 6; ++k) row = shapes::merge(row, shapes::box(Vec3(1.01 * k, 0, 0), Vec3(1.01 * k + 1, 1, 1)));
+	const DecomposeOptions o = unmerged(row, 0.02);
+	Decomposition          D = decompose(make_solid(row), o);
+	MergeMemo              memo;
+	merge_parts(D, o.tau, {}, 0, &memo);
+	MESSAGE(D.merges << " merges, " << memo.size() << " unions measured, " << memo.candidates()
+	                 << " within tau but for the reach, " << memo.reaches() << " reaches");
+	CHECK(D.merges == 5);
+	REQUIRE(D.parts().size() == 1);
+	CHECK(memo.reaches() >= (size_t) D.merges);   // every merged union's, at least
+	CHECK(memo.reaches() < memo.candidates());
+	CHECK(hull_reach_sampled(D.nodes[D.parts()[0]].mesh, 80) <= 1.01 * o.tau);
+
+	// A ring cut short at 1%: neighbouring arcs are within tau by their notches, but the hull of two
+	// spans the hole farther than tau from them (re-measured on one pair). None merges.
+	const TriMesh          ring = shapes::torus(2, 0.5, 24, 12);
+	const DecomposeOptions r    = unmerged(ring, 0.01);
+	Decomposition          R    = decompose(make_solid(ring), r);
+	MergeMemo              rmemo;
+	merge_parts(R, r.tau, {}, 0, &rmemo);
+	CHECK(rmemo.candidates() > 0);
+	CHECK(R.merges == 0);
+	CHECK(R.parts() == R.leaves());
+	const std::vector<LeafContact> contacts = neighbouring_leaves(R);
+	REQUIRE(!contacts.empty());
+	TriMesh two = R.nodes[contacts[0].a].mesh;
+	append(two, R.nodes[contacts[0].b].mesh);
+	double       spacing = 0;
+	const double bound   = hull_reach_sampled(two, 20, &spacing);
+	CHECK(bound - spacing > 1.01 * r.tau);
 }
 
 TEST_CASE("under the hull distance measure a part whose hull stays within tau is not cut")

@@ -394,12 +394,12 @@ struct Measure
 	//    over tau is cut at its notches anyway; letting the reach compete there would let the
 	//    refinement's rounding, which follows the pose, pick the notch). It is refined to 1% of tau
 	//    below tau, which certifies the hull within tau, and to 2% above.
-	void reach(double tau, bool always)
+	void reach(double tau, Reach which)
 	{
-		const double slack = tau > 0 ? 0.01 * tau : 1e-3 * diag;
-		if (tau > 0 && r.max_concavity > tau && !always) return;
+		if (which == Reach::Left || (tau > 0 && r.max_concavity > tau && which != Reach::Always)) return;
+		const double    slack = tau > 0 ? 0.01 * tau : 1e-3 * diag;
 		const double    floor = tau > 0 ? tau : r.max_concavity;
-		const HullReach hr    = hull_reach(m, hull, bridge, floor, slack, tau > 0 ? 0.02 : 0.002);
+		const HullReach hr    = bridges_reach(m, hull, bridge, tau, r.max_concavity);
 		r.hull_reach          = hr.lower;
 		r.hull_reach_bound    = hr.upper;
 		// Over when not certified within tau (+ slack); for the measure alone, when it exceeds the notches.
@@ -435,8 +435,15 @@ struct Measure
 
 } // namespace
 
+HullReach bridges_reach(const TriMesh& m, const ConvexHull& hull, const std::vector<char>& bridge, double tau,
+                        double deepest)
+{
+	const double slack = tau > 0 ? 0.01 * tau : 1e-3 * extent(hull.points);
+	return hull_reach(m, hull, bridge, tau > 0 ? tau : deepest, slack, tau > 0 ? 0.02 : 0.002);
+}
+
 ConcavityReport measure_concavity(const TriMesh& m, const Topology& topo, const ConvexHull& hull, double tau,
-                                  bool reach_always)
+                                  Reach reach)
 {
 	Measure s(m, topo, hull);
 	s.require_closed();
@@ -447,7 +454,7 @@ ConcavityReport measure_concavity(const TriMesh& m, const Topology& topo, const 
 	s.associate();
 	s.distances();
 	s.notches();
-	s.reach(tau, reach_always);
+	s.reach(tau, reach);
 	s.r.bridge = std::move(s.bridge);
 	return std::move(s.r);
 }

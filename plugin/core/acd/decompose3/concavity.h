@@ -3,6 +3,7 @@
 #pragma once
 
 #include "acd/hull/hull.h"
+#include "acd/hull/hull_reach.h"
 #include "acd/mesh/topology.h"
 #include "acd/mesh/measures.h"
 
@@ -26,12 +27,21 @@ struct ConcavityReport
 	std::vector<char> bridge;     // per hull facet: a bridge (not covered by the surface)
 };
 
+// Which parts the bridges' reach is measured for: those whose notches lie within tau, every part, or
+// none (the caller measures it later, with bridges_reach, from the report's `bridge`).
+enum class Reach { WhereWithin, Always, Left };
+
 // `m` must be a closed, edge-manifold, outward-oriented mesh (see make_solid) and `hull` its hull.
 // A part's concavity is the larger of its notches' distances to their bridges and the bridges' reach
 // beyond the surface, so it is never less than how far the part's hull stands off the part. With
-// `tau` > 0 (model units) the reach is refined only as far as deciding against tau needs, and only for a
-// part whose notches lie within tau, unless `reach_always`.
+// `tau` > 0 (model units) the reach is refined only as far as deciding against tau needs, for the parts
+// `reach` names.
 ConcavityReport measure_concavity(const TriMesh& m, const Topology& topo, const ConvexHull& hull, double tau = 0,
-                                  bool reach_always = false);
+                                  Reach reach = Reach::WhereWithin);
+
+// The bridges' reach as measure_concavity refines it: against tau (> 0) to 1% of tau, 2% above it; with
+// tau 0 to 0.1% of the largest notch concavity `deepest`, which it is checked against.
+HullReach bridges_reach(const TriMesh& m, const ConvexHull& hull, const std::vector<char>& bridge, double tau,
+                        double deepest = 0);
 
 } // namespace acd

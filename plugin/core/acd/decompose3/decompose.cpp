@@ -4,6 +4,7 @@
 #include "acd/decompose3/measure_memo.h"
 #include "acd/decompose3/merge.h"
 #include "acd/decompose3/proxy_search.h"
+#include "acd/decompose3/relay.h"
 #include "acd/mesh/parallel.h"
 #include "acd/recursion/recursion.h"
 #include "acd/mesh/measures.h"
@@ -32,6 +33,7 @@
 #include <queue>
 #include <set>
 #include <sstream>
+#include <string>
 #include <unordered_map>
 #include <unordered_set>
 #include <thread>
@@ -106,7 +108,7 @@ struct Measured
 	Measured(const TriMesh& m, bool keep_cavities, double tau, bool reach_always = false)
 	    : cavities(cavity_faces(m)),
 	      outer(keep_cavities && !cavities.empty() ? outer_surface(m, cavities) : TriMesh()),
-	      topo(surface(m)), hull(surface(m).V), rep(measure_concavity(surface(m), topo, hull, tau, reach_always))
+	      topo(surface(m)), hull(surface(m).V), rep(measure_concavity(surface(m), topo, hull, tau, reach_always ? Reach::Always : Reach::WhereWithin))
 	{
 	}
 	// What topo, hull and rep describe: the node's mesh `m` itself, or its outer surface. (The node's
@@ -774,8 +776,7 @@ namespace {
 // greedy search's choices compound, so which rule leaves fewer parts shows only at the end. The two
 // searches run side by side, each free to take the threads the other leaves idle (one large part's
 // measure, a merge's last unions), and share what both measure: a measure one is making the other waits
-// for. Reports go through the calling thread (the host's callback may touch its GUI), each search's
-// progress half of the whole; a cancel there reaches both at their next report. With one thread the
+// for. Reports go through the Relay. With one thread the
 // second search runs in the time the first left. A solid large enough to be searched on a proxy is
 // searched once here: its proxy search grows both trees on the proxy and certifies only the better on
 // the solid (proxy_search.h), where a second search would double the certificates.
@@ -787,13 +788,11 @@ Decomposition search_rules(const Solid& unit, const DecomposeOptions& opt)
 	                  unit.mesh.F.size() <= (size_t) ProxySettings().above;
 	if (!both) return search(unit, o);
 	const auto            start = std::chrono::steady_clock::now();
-	const std::thread::id caller = std::this_thread::get_id();
 	const int             threads = (int) available_threads();
 	MergeMemo             memo;       // the two trees share their first cuts, and their merges many unions
 	MeasureMemo           measures;   // and the parts their planes make at the nodes they share
 	std::array<Decomposition, 2> found;   // the second stays empty when the first left it no time
-	std::atomic<int>             pct[2] = {0, 0};
-	std::atomic<bool>            cancelled{false};
+	Relay                        relay(opt.progress);
 	auto one = [&](size_t k) {
 		const ThreadLimit all(threads);
 		DecomposeOptions  ok = o;
@@ -802,13 +801,12 @@ Decomposition search_rules(const Solid& unit, const DecomposeOptions& opt)
 			ok.time_limit_seconds -= std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 			if (k == 1 && ok.time_limit_seconds <= 0) return;
 		}
-		if (opt.progress)
-			ok.progress = [&, k](int p, const char* msg) {
-				pct[k] = p;
-				if (std::this_thread::get_id() == caller && !opt.progress((pct[0] + pct[1]) / 2, msg)) cancelled = true;
-				return !cancelled.load();
-			};
-		found[k] = search(unit, ok, {}, &memo, &measures);
+		if (opt.progress) ok.progress = relay.progress((int) k);
+		{
+			const Relay::Running running(relay);
+			found[k] = search(unit, ok, {}, &memo, &measures);
+		}
+		relay.help_other();
 	};
 	parallel_for(2, one);
 	if (found[1].nodes.empty() || !better(found[1], found[0])) return std::move(found[0]);

@@ -20,6 +20,7 @@
 #include <atomic>
 #include <cstdint>
 #include <map>
+#include <memory>
 #include <mutex>
 #include <optional>
 #include <queue>
@@ -136,6 +137,12 @@ struct Group
 	int               shells = 1;      // its solid's shells (a union across the input's solids has several)
 	bool              alive = true;
 	int               origin = -1;   // the part's node it started as (merge_parts_further), else -1
+	// A union whose hull's reach (the certificate's costly half) is measured only once it comes first in
+	// line to be merged: its hull and bridges until then, and its key in the memo.
+	bool                              reach_open = false;
+	std::shared_ptr<const ConvexHull> hull;
+	std::vector<char>                 bridge;
+	std::array<std::uint64_t, 3>      key{};
 };
 
 struct Candidate
@@ -151,6 +158,8 @@ struct Candidate
 struct MergeMemo::Unions
 {
 	SharedResults<std::array<std::uint64_t, 3>, std::optional<Group>> by_key;
+	SharedResults<std::array<std::uint64_t, 3>, HullReach>            reaches;   // of the unions by_key holds
+	std::atomic<size_t>                                                candidates{0};
 };
 
 namespace {
@@ -367,12 +376,17 @@ private:
 		const std::uint64_t                cuts[2] = {planes_hash(planes), planes_hash(separating(leaves))};
 		const std::array<std::uint64_t, 3> key     = {groups[a].content, groups[b].content, mix(0, cuts, sizeof cuts)};
 		// Measured, or being measured by the other search: the same union whichever leaves it took.
-		std::optional<Group> g = memo->unions->by_key.find_or_make(key, [&] { return measure_union(a, b, planes, leaves); });
-		if (g) g->leaves = leaves;
+		std::optional<Group> g = memo->unions->by_key.find_or_make(key, [&] {
+			std::optional<Group> made = measure_union(a, b, planes, leaves);
+			if (made) ++memo->unions->candidates;
+			return made;
+		});
+		if (g) g->leaves = leaves, g->key = key;
 		return g;
 	}
 
-	// `planes`: the cuts they touch along (contact_planes); `leaves`: both groups' (merged_leaves).
+	// `planes`: the cuts they touch along (contact_planes); `leaves`: both groups' (merged_leaves). Its
+	// reach is left open (measure_reach).
 	std::optional<Group> measure_union(int a, int b, const std::vector<Plane>& planes, std::vector<int> leaves) const
 	{
 		const Group &A = groups[a], &B = groups[b];
@@ -403,17 +417,18 @@ private:
 			return std::nullopt;
 		if (std::abs(s.volume - PA.volume - PB.volume) > 1e-6 * (PA.volume + PB.volume)) return std::nullopt;
 		const Topology        topo(s.mesh);
-		const ConvexHull      hull(s.mesh.V);
-		const ConcavityReport rep = measure_concavity(s.mesh, topo, hull, tau, by_hull);
+		auto                  hull = std::make_shared<const ConvexHull>(s.mesh.V);
+		const ConcavityReport rep  = measure_concavity(s.mesh, topo, *hull, tau, Reach::Left);
 		Group                 g;
 		Node&                 n = g.part;
 		n.concavity           = rep.max_concavity;
-		n.hull_distance       = rep.hull_reach;
-		n.hull_distance_bound = rep.hull_reach_bound;
 		n.volume              = s.volume;
 		n.notch_count         = rep.notches;
 		if (rep.max_vertex >= 0) n.notch = s.mesh.V[rep.max_vertex];
-		if (!certify_merged(n, tau, measure)) return std::nullopt;
+		if (!by_hull && n.concavity > tau) return std::nullopt;   // the concavity certificate's notch half
+		g.reach_open = true;
+		g.hull       = std::move(hull);
+		g.bridge     = rep.bridge;
 		g.shells  = s.shells;
 		n.mesh    = std::move(s.mesh);
 		g.extreme = extreme_points(corners);
@@ -513,16 +528,56 @@ private:
 		}
 	}
 
+	// Union u's hull reach, as the cuts' measure refines it (measure_concavity with Reach::Always, shared
+	// through the memo by the two searches): its hull distance, and beyond tau its concavity, which fails
+	// the certificate.
+	void measure_reach(Group& u) const
+	{
+		const auto      make = [&] { return bridges_reach(u.part.mesh, *u.hull, u.bridge, tau); };
+		const HullReach hr   = memo ? memo->unions->reaches.find_or_make(u.key, make) : make();
+		Node&           n    = u.part;
+		n.hull_distance       = hr.lower;
+		n.hull_distance_bound = hr.upper;
+		if (hr.facet >= 0 && hr.upper > tau + 0.01 * tau)
+			n.concavity = std::max(n.concavity, std::max(hr.lower, std::nextafter(tau, 2 * tau)));
+		u.reach_open = false;
+		u.hull.reset();
+		u.bridge = std::vector<char>();
+	}
+
+	// The reach of the first unions in line, one per core, when the first has none yet. Most unions never
+	// come first (a neighbour of theirs merges before), so most reaches are never measured; the line is
+	// the heap's, so the merges are those of measuring every union as it is scored.
+	void measure_reach_in_line()
+	{
+		std::vector<int> line;
+		while (!heap.empty() && line.size() < available_threads()) {
+			const int i = heap.top();
+			if (!groups[pool[i].a].alive || !groups[pool[i].b].alive) {   // skipped when popped anyway
+				heap.pop();
+				pool[i].u = Group();
+				continue;
+			}
+			if (!pool[i].u.reach_open) break;
+			heap.pop();   // its concavity may change: out of the heap while measured
+			line.push_back(i);
+		}
+		parallel_for(line.size(), [&](size_t k) { measure_reach(pool[line[k]].u); });
+		for (int i : line) heap.push(i);
+	}
+
 	void greedy()
 	{
 		while (!heap.empty() && !out_of_time()) {
+			measure_reach_in_line();
+			if (heap.empty() || pool[heap.top()].u.reach_open) continue;   // one measured over tau sank in line
 			const int i = heap.top();
 			heap.pop();
 			const int a = pool[i].a, b = pool[i].b;
 			Group u = std::move(pool[i].u);
 			pool[i].u = Group();
 			if (!groups[a].alive || !groups[b].alive) continue;   // one of them has merged since
-			if (!settle(u, a, b)) continue;
+			if (!certify_merged(u.part, tau, measure) || !settle(u, a, b)) continue;
 			for (int x : {a, b}) {   // merged away: only its leaves are kept
 				groups[x].alive = false;
 				groups[x].part  = Node();
@@ -576,6 +631,14 @@ MergeMemo::~MergeMemo() = default;
 size_t MergeMemo::size() const
 {
 	return unions->by_key.size();
+}
+size_t MergeMemo::candidates() const
+{
+	return unions->candidates;
+}
+size_t MergeMemo::reaches() const
+{
+	return unions->reaches.size();
 }
 
 namespace {

@@ -23,6 +23,10 @@ namespace acd {
 // tau (uncut) are never merged. With `seconds` > 0 merging stops once that long has passed (the parts
 // stay a certified partition; D.merge_time_limit_reached says so). Returns the number of merges.
 //
+// A union's hull reach, the certificate's costly half, is measured only once the union comes first in
+// line to merge (most never do: a neighbour of theirs merges first); the line is the same, so are the
+// merges.
+//
 // `memo`, when given, keeps every union measured, keyed by the two parts' contents and the cuts along
 // and between them, and reuses them: two merges over cut trees of one solid that share their first cuts
 // (cut_search's two searches) measure each shared union once. The parts are the same with or without.
@@ -31,7 +35,9 @@ class MergeMemo
 public:
 	MergeMemo();
 	~MergeMemo();
-	size_t size() const;   // unions measured and kept
+	size_t size() const;         // unions measured and kept
+	size_t candidates() const;   // of those, the unions that passed the certificate but for the reach
+	size_t reaches() const;      // and of those, the unions whose hull's reach was measured
 	struct Unions;
 	std::unique_ptr<Unions> unions;
 };
