@@ -2,6 +2,7 @@
 
 #include "check.h"
 
+#include <algorithm>
 #include <set>
 #include <string>
 #include <vector>
@@ -17,6 +18,7 @@ namespace {
 struct TwoSearches
 {
 	std::vector<std::string>  heard;
+	std::vector<int>          shares;
 	std::set<std::thread::id> host_threads, nested_threads;
 	std::mutex                nested_mutex;
 	std::atomic<bool>         other_started{false}, other_stopped{false};
@@ -24,9 +26,10 @@ struct TwoSearches
 	void run(int reports, int nested, int cancel_after = -1)
 	{
 		const ThreadLimit                     two(2);
-		const std::function<bool(int, const char*)> host = [&](int, const char* msg) {
+		const std::function<bool(int, const char*)> host = [&](int pct, const char* msg) {
 			host_threads.insert(std::this_thread::get_id());
 			heard.emplace_back(msg);
+			shares.push_back(pct);
 			return cancel_after < 0 || (int) heard.size() < cancel_after;
 		};
 		Relay relay(host);
@@ -37,7 +40,7 @@ struct TwoSearches
 				const auto           report = relay.progress((int) k);
 				if (std::this_thread::get_id() == caller()) {
 					for (int wait = 0; wait < 2000 && !other_started; ++wait) std::this_thread::sleep_for(std::chrono::milliseconds(1));
-					report(50, "first done");
+					report(100, "first done");
 				}
 				else {
 					other_started = true;
@@ -47,7 +50,7 @@ struct TwoSearches
 							std::lock_guard<std::mutex> lock(nested_mutex);
 							nested_threads.insert(std::this_thread::get_id());
 						});
-						if (!report(r, ("other " + std::to_string(r)).c_str())) {
+						if (!report(r % 2 ? 10 * r : 40, ("other " + std::to_string(r)).c_str())) {   // steps back
 							other_stopped = true;
 							break;
 						}
@@ -76,6 +79,8 @@ TEST_CASE("relay: the other search's reports reach the host on its thread after 
 	CHECK(t.heard.back() == "other 5");   // the other's last report, heard after the first had ended
 	CHECK(t.heard.size() >= 3);           // and more than its last: each 200 ms loop spans a relay
 	CHECK(t.nested_threads.count(t.main) == 1);   // the caller took steps of the other's loops
+	CHECK(std::is_sorted(t.shares.begin(), t.shares.end()));   // the host's bar never steps back
+	CHECK(t.shares.front() == 50);   // the mean of the two searches' shares
 }
 
 TEST_CASE("relay: a cancel at the host stops the other search at its next report")

@@ -8,6 +8,7 @@
 
 #include "acd/mesh/parallel.h"
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <functional>
@@ -62,15 +63,19 @@ public:
 	}
 
 private:
+	// The mean of the two searches' shares, never below what the host was shown (each search's own
+	// estimate can step back as its tree grows).
 	void pass(const char* msg)
 	{
-		if (host && !cancelled && !host((pct[0] + pct[1]) / 2, msg)) cancelled = true;
+		shown = std::max(shown, (pct[0] + pct[1]) / 2);
+		if (host && !cancelled && !host(shown, msg)) cancelled = true;
 	}
 
 	const std::function<bool(int, const char*)>& host;
 	const std::thread::id                        caller;
 	std::atomic<int>                             pct[2] = {0, 0};
 	std::atomic<int>                             running{0};
+	int                                          shown = 0;   // the share last passed (the calling thread's)
 	std::atomic<bool>                            cancelled{false};
 	std::mutex                                   mutex;
 	std::string                                  waiting;   // the other search's latest report
