@@ -38,7 +38,7 @@ struct TwoSearches
 				const ThreadLimit    both(2);   // each search may take every thread, as decompose's do
 				const Relay::Running running(relay);
 				const auto           report = relay.progress((int) k);
-				if (std::this_thread::get_id() == caller()) {
+				if (std::this_thread::get_id() == main) {
 					for (int wait = 0; wait < 2000 && !other_started; ++wait) std::this_thread::sleep_for(std::chrono::milliseconds(1));
 					report(100, "first done");
 				}
@@ -60,8 +60,7 @@ struct TwoSearches
 			relay.help_other();
 		});
 	}
-	std::thread::id caller() const { return main; }
-	const std::thread::id main = std::this_thread::get_id();
+	const std::thread::id main = std::this_thread::get_id();   // the calling thread
 };
 
 } // namespace

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 #include <map>
 #include <vector>
 
@@ -397,17 +398,11 @@ struct Measure
 	void reach(double tau, Reach which)
 	{
 		if (which == Reach::Left || (tau > 0 && r.max_concavity > tau && which != Reach::Always)) return;
-		const double    slack = tau > 0 ? 0.01 * tau : 1e-3 * diag;
-		const double    floor = tau > 0 ? tau : r.max_concavity;
 		const HullReach hr    = bridges_reach(m, hull, bridge, tau, r.max_concavity);
 		r.hull_reach          = hr.lower;
 		r.hull_reach_bound    = hr.upper;
-		// Over when not certified within tau (+ slack); for the measure alone, when it exceeds the notches.
-		const bool over = tau > 0 ? hr.upper > floor + slack : hr.lower > floor + slack;
-		if (hr.facet < 0 || !over) return;
-		// Not certified is over tau, even where the search stopped below it (its work bound).
-		const double c        = std::max(hr.lower, tau > 0 ? std::nextafter(floor, 2 * floor) : 0.0);
-		if (c <= r.max_concavity) return;   // notches over tau already (measured with `always`)
+		const double c        = reach_charge(hr, hull, tau, r.max_concavity);
+		if (c <= r.max_concavity) return;   // within the bar, or notches over tau already (Reach::Always)
 		const int    v        = notch_nearest(hr.nearest);
 		r.vertex_concavity[v] = std::max(r.vertex_concavity[v], c);
 		r.max_concavity       = c;
@@ -435,11 +430,31 @@ struct Measure
 
 } // namespace
 
+namespace {
+
+// What the reach is measured against: tau, or with tau 0 the deepest notch; and the slack beyond it.
+std::pair<double, double> reach_floor(const ConvexHull& hull, double tau, double deepest)
+{
+	return {tau > 0 ? tau : deepest, tau > 0 ? 0.01 * tau : 1e-3 * extent(hull.points)};
+}
+
+} // namespace
+
 HullReach bridges_reach(const TriMesh& m, const ConvexHull& hull, const std::vector<char>& bridge, double tau,
                         double deepest)
 {
-	const double slack = tau > 0 ? 0.01 * tau : 1e-3 * extent(hull.points);
-	return hull_reach(m, hull, bridge, tau > 0 ? tau : deepest, slack, tau > 0 ? 0.02 : 0.002);
+	const auto [floor, slack] = reach_floor(hull, tau, deepest);
+	return hull_reach(m, hull, bridge, floor, slack, tau > 0 ? 0.02 : 0.002);
+}
+
+double reach_charge(const HullReach& hr, const ConvexHull& hull, double tau, double deepest)
+{
+	const auto [floor, slack] = reach_floor(hull, tau, deepest);
+	// Over when not certified within tau (+ slack); for the measure alone, when it exceeds the notches.
+	const bool over = tau > 0 ? hr.upper > floor + slack : hr.lower > floor + slack;
+	if (hr.facet < 0 || !over) return 0;
+	// Not certified is over tau, even where the search stopped below it (its work bound).
+	return std::max(hr.lower, tau > 0 ? std::nextafter(floor, 2 * floor) : 0.0);
 }
 
 ConcavityReport measure_concavity(const TriMesh& m, const Topology& topo, const ConvexHull& hull, double tau,

@@ -44,4 +44,9 @@ ConcavityReport measure_concavity(const TriMesh& m, const Topology& topo, const 
 HullReach bridges_reach(const TriMesh& m, const ConvexHull& hull, const std::vector<char>& bridge, double tau,
                         double deepest = 0);
 
+// The concavity that reach charges its part with (at its nearest notch): with tau > 0, where the reach is
+// not certified within tau, at least a hair over tau; with tau 0, the reach where it exceeds `deepest`.
+// 0 where it charges nothing.
+double reach_charge(const HullReach& reach, const ConvexHull& hull, double tau, double deepest = 0);
+
 } // namespace acd

@@ -33,7 +33,6 @@
 #include <queue>
 #include <set>
 #include <sstream>
-#include <string>
 #include <unordered_map>
 #include <unordered_set>
 #include <thread>
@@ -776,8 +775,8 @@ namespace {
 // greedy search's choices compound, so which rule leaves fewer parts shows only at the end. The two
 // searches run side by side, each free to take the threads the other leaves idle (one large part's
 // measure, a merge's last unions), and share what both measure: a measure one is making the other waits
-// for. Reports go through the Relay. With one thread the
-// second search runs in the time the first left. A solid large enough to be searched on a proxy is
+// for. Reports go through the Relay (relay.h). With one thread the second search runs in the time the
+// first left. A solid large enough to be searched on a proxy is
 // searched once here: its proxy search grows both trees on the proxy and certifies only the better on
 // the solid (proxy_search.h), where a second search would double the certificates.
 Decomposition search_rules(const Solid& unit, const DecomposeOptions& opt)

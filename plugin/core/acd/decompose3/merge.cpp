@@ -528,9 +528,9 @@ private:
 		}
 	}
 
-	// Union u's hull reach, as the cuts' measure refines it (measure_concavity with Reach::Always, shared
-	// through the memo by the two searches): its hull distance, and beyond tau its concavity, which fails
-	// the certificate.
+	// Union u's hull reach, as the cuts' measure refines it and charges it (measure_concavity with
+	// Reach::Always; shared through the memo by the two searches): its hull distance, and beyond tau its
+	// concavity, which fails the certificate.
 	void measure_reach(Group& u) const
 	{
 		const auto      make = [&] { return bridges_reach(u.part.mesh, *u.hull, u.bridge, tau); };
@@ -538,8 +538,7 @@ private:
 		Node&           n    = u.part;
 		n.hull_distance       = hr.lower;
 		n.hull_distance_bound = hr.upper;
-		if (hr.facet >= 0 && hr.upper > tau + 0.01 * tau)
-			n.concavity = std::max(n.concavity, std::max(hr.lower, std::nextafter(tau, 2 * tau)));
+		n.concavity           = std::max(n.concavity, reach_charge(hr, *u.hull, tau));
 		u.reach_open = false;
 		u.hull.reset();
 		u.bridge = std::vector<char>();
