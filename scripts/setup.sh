@@ -24,9 +24,9 @@ if pip_need pymeshlab 2025.7.post1; then "$PY" -m pip install -q "pymeshlab==202
 for p in numpy pytest wheel setuptools; do
 	if pip_need "$p" '*'; then "$PY" -m pip install -q "$p"; fi
 done
-# Batch and simulator export, robots (yourdfpy for URDF, usd-core for USD); trimesh, scipy (Qhull), libigl (exact point-mesh distances) and manifold3d
+# pytest-xdist runs the pytest suite on two workers. Batch and simulator export, robots (yourdfpy for URDF, usd-core for USD); trimesh, scipy (Qhull), libigl (exact point-mesh distances) and manifold3d
 # (exact CAD-shaped solids) for the independent checks in the tests.
-for pv in tqdm:4.70.1 ray:2.60.0 mujoco:4.0.0 pybullet:3.2.7 yourdfpy:0.0.60 usd-core:26.11 trimesh:5.2.0 scipy:1.17.1 manifold3d:3.5.4 libigl:2.6.1; do
+for pv in pytest-xdist:3.6.1 tqdm:4.70.1 ray:2.60.0 mujoco:4.0.0 pybullet:3.2.7 yourdfpy:0.0.60 usd-core:26.11 trimesh:5.2.0 scipy:1.17.1 manifold3d:3.5.4 libigl:2.6.1; do
 	if pip_need "${pv%%:*}" "${pv#*:}"; then "$PY" -m pip install -q "${pv%%:*}==${pv#*:}"; fi
 done
 

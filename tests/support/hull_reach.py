@@ -72,16 +72,34 @@ def _covered(hull, V, F):
     groups = np.array([root(i) for i in range(len(eq))])
     P = hull.points[hull.simplices]
     s_area = 0.5 * np.linalg.norm(np.cross(P[:, 1] - P[:, 0], P[:, 2] - P[:, 0]), axis=1)
-    a, b, c = V[F[:, 0]], V[F[:, 1]], V[F[:, 2]]
+    roots, gid = np.unique(groups, return_inverse=True)
+    e = eq[roots]   # one plane per facet
+    # The facets each vertex lies on (within eps), found a block of vertices at a time: a face can lie
+    # in a facet only if its first corner does, so each face is tested against those facets alone, not
+    # against each of a dense scan's thousands.
+    used = np.unique(F)
+    normals = np.ascontiguousarray(e[:, :3].T)
+    pv, pg = [], []
+    for k in range(0, len(used), 256):
+        ids = used[k:k + 256]
+        D = V[ids] @ normals
+        D += e[:, 3]
+        boundary = D.max(1) >= -eps   # most vertices of a scan lie inside: one pass rules them out
+        vi, gi = np.nonzero(np.abs(D[boundary]) <= eps)
+        pv.append(ids[boundary][vi])
+        pg.append(gi)
+    pv, pg = np.concatenate(pv), np.concatenate(pg)   # sorted by vertex, as `used` is
+    start = np.searchsorted(pv, np.arange(len(V)))
+    count = np.searchsorted(pv, np.arange(len(V)), side="right") - start
+    per = count[F[:, 0]]
+    face = np.repeat(np.arange(len(F)), per)
+    g = pg[np.repeat(start[F[:, 0]], per) + np.arange(per.sum()) - np.repeat(np.cumsum(per) - per, per)]
+    a, b, c = V[F[face, 0]], V[F[face, 1]], V[F[face, 2]]
     n = np.cross(b - a, c - a)
-    f_area = 0.5 * np.linalg.norm(n, axis=1)
-    covered = np.zeros(len(eq), bool)
-    for g in np.unique(groups):
-        members = groups == g
-        e = eq[g]
-        on = ((np.abs(a @ e[:3] + e[3]) <= eps) & (np.abs(b @ e[:3] + e[3]) <= eps)
-              & (np.abs(c @ e[:3] + e[3]) <= eps) & (n @ e[:3] > 0))
-        covered[members] = f_area[on].sum() >= s_area[members].sum() * (1 - 1e-7)
+    on = ((np.abs((b * e[g, :3]).sum(1) + e[g, 3]) <= eps) & (np.abs((c * e[g, :3]).sum(1) + e[g, 3]) <= eps)
+          & ((n * e[g, :3]).sum(1) > 0))
+    tiled = np.bincount(g[on], 0.5 * np.linalg.norm(n[on], axis=1), len(roots))   # area of faces in each facet
+    covered = (tiled >= np.bincount(gid, s_area, len(roots)) * (1 - 1e-7))[gid]
     return covered
 
 
