@@ -16,8 +16,8 @@ fi
 
 echo "== pytest (through pymeshlab) =="
 set +e
-# Two workers: most tests spend their time in single-threaded Python checks, and the suite takes
-# about two thirds of its one-worker time on two cores (ACD_TEST_WORKERS=0 runs it in one process).
+# Two workers: most tests spend their time in single-threaded Python checks, and the suite takes a
+# little over half its one-worker time on two cores (ACD_TEST_WORKERS=0 runs it in one process).
 python3 -m pytest -q -n "${ACD_TEST_WORKERS:-2}" --durations=15 --ignore="$ACD_REPO/tests/gui" "$ACD_REPO/tests" "$@"
 rc=$?
 set -e

@@ -91,6 +91,8 @@ def _covered(hull, V, F):
     pv, pg = np.concatenate(pv), np.concatenate(pg)   # sorted by vertex, as `used` is
     start = np.searchsorted(pv, np.arange(len(V)))
     count = np.searchsorted(pv, np.arange(len(V)), side="right") - start
+    # Each face paired with every facet its first corner lies on: face i's run of pairs starts at
+    # start[F[i, 0]] and is per[i] long.
     per = count[F[:, 0]]
     face = np.repeat(np.arange(len(F)), per)
     g = pg[np.repeat(start[F[:, 0]], per) + np.arange(per.sum()) - np.repeat(np.cumsum(per) - per, per)]

@@ -5,8 +5,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <utility>
 #include <map>
+#include <utility>
 #include <vector>
 
 namespace acd {
@@ -427,10 +427,6 @@ struct Measure
 		return v;
 	}
 };
-
-} // namespace
-
-namespace {
 
 // What the reach is measured against: tau, or with tau 0 the deepest notch; and the slack beyond it.
 std::pair<double, double> reach_floor(const ConvexHull& hull, double tau, double deepest)
