@@ -13,7 +13,7 @@ import pytest
 import pymeshlab_acd
 from pymeshlab_acd.options import DEFAULTS
 from support.partition import certified, check_partition, parts_of
-from support.meshes import (BUNNY, L_SHAPE, PLUS, SHARED, U_SHAPE, add_mesh, extrude, hull_within, icosphere, inside,
+from support.meshes import (BUNNY, L_SHAPE, PLUS, SHARED, present, U_SHAPE, add_mesh, extrude, hull_within, icosphere, inside,
                       interior_samples, is_closed_manifold, torus, volume)
 
 
@@ -126,10 +126,7 @@ def test_more_bad_input_gets_a_clear_error(ms, bad, match):
 
 
 def test_slightly_self_intersecting_meshes_decompose_with_a_warning(ms):
-    path = SHARED / "cow.obj"   # 71 pairs of crossing faces
-    if not path.exists():
-        pytest.skip(f"{path} not present")
-    ms.load_new_mesh(str(path))
+    ms.load_new_mesh(present(SHARED / "cow.obj"))   # 71 pairs of crossing faces
     res, ids = pymeshlab_acd.decompose(ms, tau=10.0, cut_plane_selection="bisector")
     assert res["self_intersections"] > 0 and res["parts"] >= 1
     for i in ids:
@@ -170,10 +167,7 @@ CLOSED = ["cow.obj", "spot.obj", "homer.obj", "fandisk.obj", "cheburashka.obj", 
 
 @pytest.mark.parametrize("name", CLOSED)
 def test_shared_closed_meshes_partition(ms, name):
-    path = SHARED / name
-    if not path.exists():
-        pytest.skip(f"{path} not present (shared data sits beside the repo)")
-    ms.load_new_mesh(str(path))
+    ms.load_new_mesh(present(SHARED / name))
     res, ids = pymeshlab_acd.decompose(ms, tau=10.0, cut_plane_selection="bisector")
     assert res["parts"] >= 1
     # Dense scanned meshes: the numpy hull measure would take minutes per mesh; their pockets have many

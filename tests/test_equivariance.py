@@ -4,14 +4,13 @@ Parts are compared by their count and their sorted volumes (measured here, not r
 filter); when a rotated run differs, its hull error (measured here with pymeshlab's Hausdorff
 sampler on the union of hulls) must stay within 10% of the unrotated one.
 """
-import pathlib
 
 import numpy as np
 import pymeshlab
 import pytest
 
 import pymeshlab_acd
-from support.meshes import BUNNY, SHARED, add_mesh, random_rotation, same_parts, volume
+from support.meshes import BUNNY, SHARED, present, add_mesh, random_rotation, same_parts, volume
 
 TAU = 5.0                     # percent of the enclosing-sphere diameter (rotation invariant)
 SELECTION = "bisector"
@@ -71,9 +70,7 @@ MESHES = [("bunny", BUNNY)] + [(n, SHARED / f"{n}.obj") for n in ("spot", "fandi
 
 @pytest.mark.parametrize("name,path", MESHES, ids=[m[0] for m in MESHES])
 def test_rotations_give_the_same_parts(name, path):
-    if not pathlib.Path(path).exists():
-        pytest.skip(f"{path} not present")
-    V, F = load(path)
+    V, F = load(present(path))
     ms0, ids0, vols0 = decompose(V, F, hulls=True)
     err0 = None
     same = 0

@@ -8,7 +8,7 @@ import pymeshlab
 import pytest
 
 import pymeshlab_acd
-from support.meshes import (L_SHAPE, SHARED, add_mesh, box, component_labels, extrude, icosphere, inside,
+from support.meshes import (L_SHAPE, SHARED, present, add_mesh, box, component_labels, extrude, icosphere, inside,
                       is_closed_manifold, torus, volume, with_cavities)
 from support.partition import check_partition, remeasured_concavity, within_tau
 
@@ -128,10 +128,7 @@ def test_torus_genus_one_with_each_hole_handling(ms, handling):
 
 @pytest.mark.parametrize("handling", HANDLING)
 def test_rocker_arm_genus_with_each_hole_handling(ms, handling):
-    path = SHARED / "rocker-arm.obj"
-    if not path.exists():
-        pytest.skip(f"{path} not present (shared data sits beside the repo)")
-    ms.load_new_mesh(str(path))
+    ms.load_new_mesh(present(SHARED / "rocker-arm.obj"))
     res, ids = pymeshlab_acd.decompose(ms, tau=4.0, cut_plane_selection="bisector", hole_handling=handling)
     assert res["parts"] >= 3
     check_partition(ms, 0, ids, tau_abs=res["tau_model_units"], overlap_samples=4)

@@ -5,7 +5,7 @@ import numpy as np
 import pymeshlab
 import pytest
 
-from support.meshes import BUNNY, SHARED, is_closed_manifold, volume
+from support.meshes import BUNNY, SHARED, present, is_closed_manifold, volume
 
 MLX = pathlib.Path(__file__).resolve().parents[1] / "scripts" / "mlx"
 MESHES = [BUNNY] + [SHARED / n for n in ("spot.obj", "fandisk.obj")]
@@ -13,9 +13,7 @@ MESHES = [BUNNY] + [SHARED / n for n in ("spot.obj", "fandisk.obj")]
 
 @pytest.mark.parametrize("mesh", MESHES, ids=lambda p: pathlib.Path(p).stem)
 def test_decompose_script_then_export_parts(ms, mesh, tmp_path):
-    if not pathlib.Path(mesh).exists():
-        pytest.skip(f"{mesh} not present")
-    ms.load_new_mesh(str(mesh))
+    ms.load_new_mesh(present(mesh))
     v0 = volume(ms.current_mesh().vertex_matrix(), ms.current_mesh().face_matrix())
     ms.load_filter_script(str(MLX / "decompose.mlx"))
     ms.apply_filter_script()

@@ -13,7 +13,7 @@ import pytest
 
 import pymeshlab_acd
 from support import cad_solids
-from support.meshes import SHARED, volume
+from support.meshes import SHARED, present, volume
 from support.open_meshes import (covered, diagonal, flipped_patch, punched, reach_beyond, refined, sheet, soup,
                                  surface_samples)
 
@@ -21,7 +21,7 @@ from support.open_meshes import (covered, diagonal, flipped_patch, punched, reac
 def closed(name):
     if name == "spot":
         ms = pymeshlab.MeshSet()
-        ms.load_new_mesh(str(SHARED / "spot.obj"))
+        ms.load_new_mesh(present(SHARED / "spot.obj"))
         return ms.current_mesh().vertex_matrix(), ms.current_mesh().face_matrix()
     return refined(*cad_solids.make(name))
 

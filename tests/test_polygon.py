@@ -13,7 +13,7 @@ import pytest
 
 import pymeshlab_acd
 from pymeshlab_acd import polygon_io
-from support.meshes import SHARED
+from support.meshes import SHARED, present
 from support.polygons import comb, noisy_blob, star
 
 POLYGONS = SHARED.parent / "polygons"
@@ -255,10 +255,7 @@ def test_noisy_outline_counts_like_figure_8(ms):
 
 @pytest.mark.parametrize("name,expected", [("simple7", (18, 26, 36)), ("hole5", None), ("hole3", None)])
 def test_the_papers_polygons(ms, name, expected):
-    path = POLYGONS / f"{name}.poly"
-    if not path.exists():
-        pytest.skip(f"{path} not present (shared data sits beside the repo)")
-    loops = polygon_io.read_loops(path)
+    loops = polygon_io.read_loops(present(POLYGONS / f"{name}.poly"))
     counts = []
     for tau in (2.0, 1.0, 0.5):
         m = pymeshlab.MeshSet()

@@ -10,7 +10,7 @@ import pymeshlab
 import pytest
 
 import pymeshlab_acd
-from support.meshes import BUNNY, SHARED, add_mesh, component_labels, extrude, inside, is_closed_manifold, torus, volume
+from support.meshes import BUNNY, SHARED, present, add_mesh, component_labels, extrude, inside, is_closed_manifold, torus, volume
 
 
 def layer(ms, label):
@@ -32,9 +32,7 @@ def components(m):
 
 @pytest.mark.parametrize("name", ["bunny", "horse"])
 def test_skeleton_inside_and_connected(ms, name):
-    path = BUNNY if name == "bunny" else SHARED / "horse.ply"
-    if not pathlib_exists(path):
-        pytest.skip(f"{path} not present")
+    path = BUNNY if name == "bunny" else present(SHARED / "horse.ply")
     ms.load_new_mesh(str(path))
     V0, F0 = ms.mesh(0).vertex_matrix(), ms.mesh(0).face_matrix()
     res = ms.generate_skeleton_from_convex_decomposition()   # default cut: min_section
@@ -46,11 +44,6 @@ def test_skeleton_inside_and_connected(ms, name):
     print(f"{name}: skeleton of {res['parts']} parts ({res['refinements']} refinements): "
           f"{sk.vertex_number()} vertices, {ratio:.4f} of 2000 points inside")
     assert ratio >= 0.99
-
-
-def pathlib_exists(p):
-    import pathlib
-    return pathlib.Path(p).exists()
 
 
 def half_ring():
@@ -101,9 +94,7 @@ def skeleton_distances(mesh_path, seeds, **kw):
 
 @pytest.mark.parametrize("name", ["bunny", "horse"])
 def test_skeleton_under_noise(name):
-    path = BUNNY if name == "bunny" else SHARED / "horse.ply"
-    if not pathlib_exists(path):
-        pytest.skip(f"{path} not present")
+    path = BUNNY if name == "bunny" else present(SHARED / "horse.ply")
     means = skeleton_distances(path, range(1, 9))
     print(f"{name} skeleton, noise 0.5% of the diagonal, seeds 1-8: mean distance "
           + ", ".join(f"{m:.4f}" for m in means) + f" of the diagonal (average {np.mean(means):.4f})")

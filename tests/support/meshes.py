@@ -4,11 +4,20 @@ import pathlib
 
 import numpy as np
 import pymeshlab
+import pytest
 
 import pymeshlab_acd
 
 BUNNY = os.path.join(os.path.dirname(pymeshlab.__file__), "tests", "sample_meshes", "bunny.obj")
 SHARED = pathlib.Path(__file__).resolve().parents[2].parent / "shared" / "data" / "meshes"
+
+
+def present(path):
+    """`path` as a string, or the calling test skipped where it is absent (the shared data sits beside the
+    repository, as CI places it)."""
+    if not pathlib.Path(path).exists():
+        pytest.skip(f"{path} not present (shared data sits beside the repo)")
+    return str(path)
 
 
 # ---- shapes ---------------------------------------------------------------------------------
