@@ -13,8 +13,8 @@ import pytest
 import pymeshlab_acd
 from pymeshlab_acd.options import DEFAULTS
 from support.partition import certified, check_partition, parts_of
-from support.meshes import (BUNNY, L_SHAPE, PLUS, SHARED, present, U_SHAPE, add_mesh, extrude, hull_within, icosphere, inside,
-                      interior_samples, is_closed_manifold, torus, volume)
+from support.meshes import (BUNNY, L_SHAPE, PLUS, SHARED, U_SHAPE, add_mesh, extrude, hull_within, icosphere, inside,
+                      interior_samples, is_closed_manifold, present, torus, volume)
 
 
 @pytest.mark.parametrize("selection", ["best", "bisector"])

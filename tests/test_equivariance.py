@@ -10,7 +10,7 @@ import pymeshlab
 import pytest
 
 import pymeshlab_acd
-from support.meshes import BUNNY, SHARED, present, add_mesh, random_rotation, same_parts, volume
+from support.meshes import BUNNY, SHARED, add_mesh, present, random_rotation, same_parts, volume
 
 TAU = 5.0                     # percent of the enclosing-sphere diameter (rotation invariant)
 SELECTION = "bisector"

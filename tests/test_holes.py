@@ -8,8 +8,8 @@ import pymeshlab
 import pytest
 
 import pymeshlab_acd
-from support.meshes import (L_SHAPE, SHARED, present, add_mesh, box, component_labels, extrude, icosphere, inside,
-                      is_closed_manifold, torus, volume, with_cavities)
+from support.meshes import (L_SHAPE, SHARED, add_mesh, box, component_labels, extrude, icosphere, inside,
+                      is_closed_manifold, present, torus, volume, with_cavities)
 from support.partition import check_partition, remeasured_concavity, within_tau
 
 HANDLING = ["principal_plane", "best_plane", "keep_cavities"]

@@ -5,7 +5,7 @@ import numpy as np
 import pymeshlab
 import pytest
 
-from support.meshes import BUNNY, SHARED, present, is_closed_manifold, volume
+from support.meshes import BUNNY, SHARED, is_closed_manifold, present, volume
 
 MLX = pathlib.Path(__file__).resolve().parents[1] / "scripts" / "mlx"
 MESHES = [BUNNY] + [SHARED / n for n in ("spot.obj", "fandisk.obj")]

@@ -10,7 +10,8 @@ import pymeshlab
 import pytest
 
 import pymeshlab_acd
-from support.meshes import BUNNY, SHARED, present, add_mesh, component_labels, extrude, inside, is_closed_manifold, torus, volume
+from support.meshes import (BUNNY, SHARED, add_mesh, component_labels, extrude, inside, is_closed_manifold, present,
+                      torus, volume)
 
 
 def layer(ms, label):
