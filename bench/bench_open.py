@@ -184,7 +184,7 @@ def main():
     folder.mkdir(parents=True, exist_ok=True)
     out = pathlib.Path(args.out)
     results, lines = {}, [f"Open meshes, {platform.node()}, {os.cpu_count()} cores; command: "
-                          f"`bench/bench.sh --open {' '.join(sys.argv[1:])}`", ""]
+                          f"`{' '.join(['bench/bench.sh', '--open'] + sys.argv[1:])}`", ""]
     for set_name, make in (("shared", shared_set), ("modelled", modelled_set)):
         if set_name in args.sets:
             rows = [row for name, kind, inp, closed in make(folder)

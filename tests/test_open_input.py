@@ -62,11 +62,13 @@ def test_holes_of_growing_size_close_along_the_surface(name, holes):
     assert res["preprocessing_time"] > 0
 
 
-@pytest.mark.parametrize("holes", [1, 3])
-@pytest.mark.parametrize("name", ["t_slot_rail", "bossed_plate"])
+@pytest.mark.parametrize("name, holes", [("t_slot_rail", 1), ("t_slot_rail", 3), ("bossed_plate", 1),
+                                         ("bossed_plate", 3), ("spur_gear", 3), ("bracket", 10)])
 def test_holes_across_cad_edges_close_on_the_solids_own_planes(name, holes):
     """Faces missing across a CAD solid's edges and corners: the holes close on the planes their rims run on,
-    so the parts fill the closed solid itself (its volume, to rounding), not a faired bulge or a chamfer."""
+    so the parts fill the closed solid itself (its volume, to rounding), not a faired bulge or a chamfer. So
+    too where a jagged rim touches the edge it spans (a gear's tooth) and where two holes meet at a vertex
+    (the bracket with 10)."""
     V, F = closed(name)
     OV, OF = punched(V, F, holes)
     hulls, parts, res = pymeshlab_acd.convex_decomposition(OV, OF, return_parts=True)

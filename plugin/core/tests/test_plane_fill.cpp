@@ -3,6 +3,7 @@
 #include "shapes.h"
 #include "check.h"
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <utility>
@@ -124,4 +125,50 @@ TEST_CASE("a hole on a curved surface, or whose planes meet no corner near it, i
 	REQUIRE(g);
 	CHECK(g->planar == 0);
 	CHECK(open_edges(g->mesh) == 0);
+}
+
+TEST_CASE("a rim that touches the crease it spans, and two openings that meet at a vertex, close on the box")
+{
+	const Eigen::Matrix3d R = (Eigen::AngleAxisd(0.7, Vec3(1, 2, 3).normalized())).toRotationMatrix();
+	const Vec3 lo(0, 0, 0), hi(2, 2, 2);
+	const TriMesh cube = shapes::subdivided(shapes::subdivided(shapes::subdivided(shapes::box(lo, hi))));   // edges 0.25
+	const auto at_vertex = [&](const TriMesh& m, const Tri& t, const Vec3& p) {
+		return std::any_of(t.begin(), t.end(), [&](int v) { return (m.V[v] - p).norm() < 1e-12; });
+	};
+	const auto centroid = [](const TriMesh& m, const Tri& t) { return Vec3((m.V[t[0]] + m.V[t[1]] + m.V[t[2]]) / 3); };
+	// Across the edge x = z = 2, but a strip of the top's faces along y = 1 kept up to the edge, those
+	// with no edge on it: the rim on the top runs out along the strip to the edge's vertex (2, 1, 2)
+	// and back, so it touches the crease the patch spans.
+	TriMesh touch;
+	touch.V = cube.V;
+	const Vec3 v(2, 1, 2);
+	bool       reaches = false;
+	for (const Tri& t : cube.F) {
+		const Vec3 c     = centroid(cube, t);
+		const bool inner = std::count_if(t.begin(), t.end(), [&](int w) { return cube.V[w].x() > 2 - 1e-9; }) <= 1;
+		const bool strip = c.z() > 2 - 1e-9 && std::abs(c.y() - 1) < 0.2 && inner;
+		reaches |= strip && at_vertex(cube, t, v);
+		if ((c - v).norm() > 0.6 || strip) touch.F.push_back(t);
+	}
+	REQUIRE(reaches);
+	// Two square openings in the top, 0.5 wide, that meet at the vertex (1, 1, 2).
+	TriMesh pinch;
+	pinch.V = cube.V;
+	for (const Tri& t : cube.F) {
+		const Vec3 c = centroid(cube, t);
+		const bool a = c.x() > 0.5 && c.x() < 1 && c.y() > 0.5 && c.y() < 1, b = c.x() > 1 && c.x() < 1.5 && c.y() > 1 && c.y() < 1.5;
+		if (c.z() < 2 - 1e-9 || !(a || b)) pinch.F.push_back(t);
+	}
+	for (const TriMesh* open : {&touch, &pinch})
+		for (const Eigen::Matrix3d& pose : {Eigen::Matrix3d(Eigen::Matrix3d::Identity()), R}) {
+			const std::optional<FilledHoles> f = fill_holes(turned(*open, pose));
+			REQUIRE(f);
+			CHECK(f->holes == 1);
+			CHECK(f->planar == 1);
+			CHECK(f->faired == 0);
+			CHECK(f->mesh.V.size() == open->V.size());   // no corner: the planes meet along the box's edge
+			CHECK(open_edges(f->mesh) == 0);
+			CHECK(off_box(*f, pose, lo, hi) < 1e-9);
+			CHECK(std::abs(volume(f->mesh) - volume(cube)) < 1e-9 * volume(cube));
+		}
 }

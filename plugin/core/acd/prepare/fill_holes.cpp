@@ -260,7 +260,7 @@ bool crosses(const TriMesh& m, const std::vector<int>& faces, const Patch& p)
 // neither crosses the faces about it nor repeats an edge of the surface.
 std::optional<Patch> plane_one(const TriMesh& m, const std::vector<int>& faces, const std::vector<RimEdge>& rim, double eps)
 {
-	std::optional<PlanePatch> pp = plane_patch(m, rim, eps);
+	std::optional<PlanePatch> pp = plane_patch(m, rim, eps, faces);
 	if (!pp) return std::nullopt;
 	Patch p;
 	p.V = std::move(pp->corners);

@@ -31,19 +31,72 @@ constexpr double kCorner = 1e-2;
 // Catalan numbers: 132 for 8).
 constexpr int kMostPlanes = 8;
 
-// The rim as one cycle, each edge's `to` the next one's `from`; empty if it is not one simple cycle.
-std::vector<RimEdge> cycle_of(const std::vector<RimEdge>& rim)
+// For each rim edge, the rim edge that follows it (its `to` the other's `from`); empty if that is not
+// one edge. Where the rim passes a vertex twice (two openings that touch at a vertex between two fans of
+// faces), the edge arriving along one fan's end leaves along the other fan's: the border edge met
+// turning about the vertex through the arriving edge's own fan (across the faces' shared edges)
+// borders the other opening. The fans are found among the faces `about` (empty: all of m's).
+std::vector<size_t> following(const TriMesh& m, const std::vector<RimEdge>& rim, const std::vector<int>& about)
 {
-	std::map<int, size_t> from;
-	for (size_t i = 0; i < rim.size(); ++i)
-		if (!from.emplace(rim[i].from, i).second) return {};
-	std::vector<RimEdge> c;
-	for (size_t i = 0; c.size() < rim.size(); i = from.at(rim[i].to)) {
-		if (!c.empty() && i == 0) return {};
-		c.push_back(rim[i]);
-		if (!from.count(rim[i].to)) return {};
+	std::map<int, std::vector<size_t>> leaving;
+	for (size_t i = 0; i < rim.size(); ++i) leaving[rim[i].from].push_back(i);
+	std::set<int> pinched;
+	for (const auto& [v, out] : leaving)
+		if (out.size() > 1) pinched.insert(v);
+	std::map<std::pair<int, int>, int> face_of;   // the edges into a pinch, by the face that runs them
+	const auto note = [&](int f) {
+		for (int k = 0; k < 3; ++k)
+			if (pinched.count(m.F[f][k])) face_of[{m.F[f][(k + 2) % 3], m.F[f][k]}] = f;
+	};
+	if (!pinched.empty()) {
+		if (about.empty())
+			for (int f = 0; f < (int) m.F.size(); ++f) note(f);
+		for (int f : about) note(f);
 	}
-	return c.back().to == c.front().from ? c : std::vector<RimEdge>{};
+	const auto own_way_out = [&](const RimEdge& in) {   // the target of the fan's border edge out of in.to
+		int f = in.face;
+		for (size_t turns = 0; turns <= face_of.size(); ++turns) {
+			const Tri& t = m.F[f];
+			const long k = std::find(t.begin(), t.end(), in.to) - t.begin();
+			if (k == 3) return -1;
+			const auto g = face_of.find({t[(k + 1) % 3], in.to});
+			if (g == face_of.end()) return t[(k + 1) % 3];
+			f = g->second;
+		}
+		return -1;
+	};
+	std::vector<size_t> next(rim.size());
+	for (size_t i = 0; i < rim.size(); ++i) {
+		const auto it = leaving.find(rim[i].to);
+		if (it == leaving.end() || it->second.size() > 2) return {};
+		const std::vector<size_t>& out = it->second;
+		const int z = out.size() == 1 ? -1 : own_way_out(rim[i]);
+		if (out.size() == 2 && rim[out[0]].to != z && rim[out[1]].to != z) return {};
+		next[i] = out.size() == 1 || rim[out[1]].to == z ? out[0] : out[1];
+	}
+	return next;
+}
+
+// The rim as simple cycles in the order `following` gives; empty if it is no such thing.
+std::vector<std::vector<RimEdge>> cycles_of(const TriMesh& m, const std::vector<RimEdge>& rim, const std::vector<int>& about)
+{
+	const std::vector<size_t> next = following(m, rim, about);
+	if (next.empty()) return {};
+	std::vector<std::vector<RimEdge>> cycles;
+	std::vector<char>                 used(rim.size(), 0);
+	for (size_t s = 0; s < rim.size(); ++s) {
+		if (used[s]) continue;
+		std::vector<RimEdge> c;
+		std::set<int>        seen;
+		for (size_t i = s; !used[i]; i = next[i]) {
+			if (!seen.insert(rim[i].from).second) return {};   // still not simple
+			used[i] = 1;
+			c.push_back(rim[i]);
+		}
+		if (c.back().to != c.front().from) return {};
+		cycles.push_back(std::move(c));
+	}
+	return cycles;
 }
 
 std::optional<Vec3> unit_normal(const TriMesh& m, int f)
@@ -210,7 +263,9 @@ bool triangulate(const std::vector<int>& poly, const std::vector<Vec3>& at, cons
 	catch (const std::exception&) {
 		return false;
 	}
-	if (cdt.number_of_vertices() != pts.size()) return false;   // a vertex repeated
+	// A vertex may repeat where the polygon touches itself (split_creases); two at one point may not.
+	const size_t distinct = std::set<int>(poly.begin(), poly.end()).size();
+	if (cdt.number_of_vertices() != distinct) return false;
 	for (CDT::All_faces_iterator f = cdt.all_faces_begin(); f != cdt.all_faces_end(); ++f) f->info() = -1;
 	// Depth: constrained edges crossed from outside, flooded one depth at a time.
 	std::vector<CDT::Face_handle> seeds{cdt.infinite_face()};
@@ -235,7 +290,7 @@ bool triangulate(const std::vector<int>& poly, const std::vector<Vec3>& at, cons
 		}
 		out.push_back({f->vertex(0)->info(), f->vertex(1)->info(), f->vertex(2)->info()}), ++made;
 	}
-	return made + 2 == pts.size();
+	return made + 2 + 2 * (pts.size() - distinct) == pts.size();   // each touch parts off one more polygon
 }
 
 // Every patch edge is a rim edge run the other way (once) or met by the patch's own edge run the other
@@ -255,9 +310,43 @@ bool closes(const std::vector<RimEdge>& c, const std::vector<Tri>& faces)
 	return met == rim.size();
 }
 
-// The polygons triangulated, if each is simple and they close the hole together.
-std::optional<PlanePatch> patch_of(const TriMesh& m, const std::vector<RimEdge>& c, const std::vector<Plane>& planes, const Polygons& pg)
+// A jagged rim may touch a crease between two of its stretches (a vertex of the solid's edge, between
+// two vertices off it): that vertex is put into every polygon edge that passes through it, so that the
+// planes meeting at the crease split it alike. Such a polygon touches itself there.
+void split_creases(const TriMesh& m, const std::vector<RimEdge>& c, const std::vector<Plane>& planes, double eps, Polygons& pg)
 {
+	std::set<std::pair<int, int>> rim;
+	for (const RimEdge& e : c) rim.insert(std::minmax(e.from, e.to));
+	const auto at = [&](int v) { return v >= 0 ? m.V[v] : pg.corners[-1 - v]; };
+	for (size_t p = 0; p < pg.of.size(); ++p) {
+		const std::vector<int>& poly = pg.of[p];
+		std::vector<int>        out;
+		for (size_t i = 0; i < poly.size(); ++i) {
+			const int a = poly[i], b = poly[(i + 1) % poly.size()];
+			out.push_back(a);
+			if (rim.count(std::minmax(a, b))) continue;
+			const Vec3   A = at(a), d = at(b) - A;
+			const double len2 = d.squaredNorm();
+			std::vector<std::pair<double, int>> on;
+			for (const RimEdge& e : c) {
+				const double t = len2 > 0 ? (m.V[e.from] - A).dot(d) / len2 : 0;
+				if (e.from != a && e.from != b && t > 0 && t < 1 && (A + t * d - m.V[e.from]).norm() <= eps &&
+				    std::abs(planes[p].eval(m.V[e.from])) <= eps)
+					on.emplace_back(t, e.from);
+			}
+			std::sort(on.begin(), on.end());
+			for (const auto& tw : on) out.push_back(tw.second);
+		}
+		pg.of[p] = std::move(out);
+	}
+}
+
+// The polygons triangulated, if each is simple (or touches itself at a vertex) and they close the hole
+// together.
+std::optional<PlanePatch> patch_of(const TriMesh& m, const std::vector<RimEdge>& c, const std::vector<Plane>& planes, Polygons pg,
+                                   double eps)
+{
+	split_creases(m, c, planes, eps, pg);
 	PlanePatch out;
 	out.corners = pg.corners;
 	for (size_t p = 0; p < planes.size(); ++p) {
@@ -292,7 +381,7 @@ std::vector<Triangles> triangulations(int lo, int hi)
 // three planes meet; a diagonal, the crease of its two). Each stretch's polygon follows it, then the
 // corners of its triangles in turn about it. The way that makes valid polygons of least area is kept.
 std::optional<PlanePatch> corner_tree(const TriMesh& m, const std::vector<RimEdge>& c, const std::vector<Run>& runs,
-                                      const std::vector<Plane>& planes, const Ball& near)
+                                      const std::vector<Plane>& planes, const Ball& near, double eps)
 {
 	const int k = (int) runs.size();
 	if (k > kMostPlanes) return std::nullopt;
@@ -322,7 +411,7 @@ std::optional<PlanePatch> corner_tree(const TriMesh& m, const std::vector<RimEdg
 			std::sort(fan.begin(), fan.end());
 			for (const auto& [offset, corner] : fan) poly.push_back(corner);
 		}
-		std::optional<PlanePatch> p = ok ? patch_of(m, c, planes, pg) : std::nullopt;
+		std::optional<PlanePatch> p = ok ? patch_of(m, c, planes, pg, eps) : std::nullopt;
 		if (!p) continue;
 		double area = 0;
 		const auto at = [&](int v) { return v >= 0 ? m.V[v] : p->corners[-1 - v]; };
@@ -332,19 +421,38 @@ std::optional<PlanePatch> corner_tree(const TriMesh& m, const std::vector<RimEdg
 	return best;
 }
 
-} // namespace
-
-std::optional<PlanePatch> plane_patch(const TriMesh& m, const std::vector<RimEdge>& rim, double eps)
+// One simple cycle of the rim closed on its planes.
+std::optional<PlanePatch> cycle_patch(const TriMesh& m, std::vector<RimEdge>& c, double eps)
 {
-	std::vector<RimEdge> c = cycle_of(rim);
-	std::vector<Run>     runs;
-	std::vector<Plane>   planes;
+	std::vector<Run>   runs;
+	std::vector<Plane> planes;
 	if (c.size() < 3 || !stretches(m, c, eps, runs, planes)) return std::nullopt;
 	const Ball near(m, c);
-	if (runs.size() >= 3 && planes.size() == runs.size()) return corner_tree(m, c, runs, planes, near);
+	if (runs.size() >= 3 && planes.size() == runs.size()) return corner_tree(m, c, runs, planes, near, eps);
 	Polygons pg;
 	if (!polygons(c, runs, planes, near, pg)) return std::nullopt;
-	return patch_of(m, c, planes, pg);
+	return patch_of(m, c, planes, pg, eps);
+}
+
+} // namespace
+
+std::optional<PlanePatch> plane_patch(const TriMesh& m, const std::vector<RimEdge>& rim, double eps, const std::vector<int>& about)
+{
+	PlanePatch out;
+	const std::vector<std::vector<RimEdge>> cycles = cycles_of(m, rim, about);
+	if (cycles.empty()) return std::nullopt;
+	for (std::vector<RimEdge> c : cycles) {   // each closed on its own; the corners numbered on
+		std::optional<PlanePatch> p = cycle_patch(m, c, eps);
+		if (!p) return std::nullopt;
+		const int shift = (int) out.corners.size();
+		out.corners.insert(out.corners.end(), p->corners.begin(), p->corners.end());
+		for (Tri t : p->faces) {
+			for (int& v : t)
+				if (v < 0) v -= shift;
+			out.faces.push_back(t);
+		}
+	}
+	return out;
 }
 
 } // namespace acd

@@ -25,15 +25,19 @@ struct PlanePatch
 };
 
 // The patch of the hole whose border edges are `rim` (any order); `eps`: the distance within which a
-// point lies on a plane. nullopt unless the rim is one cycle that runs in stretches of two or more edges,
+// point lies on a plane. The rim is one cycle, or two openings that touch at a vertex between two fans
+// of faces (each closed on its own). nullopt unless each cycle runs in stretches of two or more edges,
 // each on the plane of its faces, and the planes meet inside the hole in one of these ways:
 //  - every stretch on a plane of its own (up to 8): the planes meet at corners, three at a time, as a
 //    triangulation of the polygon whose vertices are the stretches says; of all such ways, the one whose
 //    corners lie near the hole and whose polygons are valid with the least area;
 //  - else, between two stretches on one plane the rim visits either the same other plane at both ends (the
 //    patch follows their crease) or two planes only (it turns at the corner the three make, near the hole);
-// and unless each plane's patch is a simple polygon and they close the hole together. The patch is not
-// checked against the surface beyond its rim.
-std::optional<PlanePatch> plane_patch(const TriMesh& m, const std::vector<RimEdge>& rim, double eps);
+// and unless each plane's patch is a simple polygon (or one that touches itself where the rim touches a
+// crease the patch spans, at a vertex of the solid's edge) and they close the hole together. The patch
+// is not checked against the surface beyond its rim.
+// `about`: the faces about the hole, among which a vertex's fans are found (empty: all of m's).
+std::optional<PlanePatch> plane_patch(const TriMesh& m, const std::vector<RimEdge>& rim, double eps,
+                                      const std::vector<int>& about = {});
 
 } // namespace acd
