@@ -77,6 +77,17 @@ def test_holes_across_cad_edges_close_on_the_solids_own_planes(name, holes):
     check_solid_within(hulls, res, V, F)
 
 
+def test_a_hole_across_a_faceted_rim_closes_on_the_facets_continued():
+    """The flange's largest of 3 holes runs across its rim, top to bottom, where the rim crosses one of the
+    64 facets along a single edge: the facets beside it continue across the hole (a crease a little outside
+    the round rim), not a wrap of the whole flange."""
+    V, F = closed("flange")
+    OV, OF = punched(V, F, 3)
+    hulls, res = decompose(OV, OF)
+    assert res["holes_filled"] == res["holes_on_planes"] == 3, res
+    check_solid_within(hulls, res, V, F)
+
+
 @pytest.mark.parametrize("dirt", ["soup", "flipped_patch"])
 def test_a_soup_and_a_flipped_patch_still_enclose_their_solid(dirt):
     V, F = closed("spot")

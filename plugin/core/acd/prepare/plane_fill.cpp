@@ -30,6 +30,9 @@ constexpr double kCorner = 1e-2;
 // A rim on more distinct planes than this is left to the fairing (their ways to meet grow as the
 // Catalan numbers: 132 for 8).
 constexpr int kMostPlanes = 8;
+// A single edge of the rim on a plane of its own joins a stretch beside it whose plane holds its ends
+// within this share of its length (absorb_single_edges).
+constexpr double kNearlyOn = 0.2;
 
 // For each rim edge, the rim edge that follows it (its `to` the other's `from`); empty if that is not
 // one edge. Where the rim passes a vertex twice (two openings that touch at a vertex between two fans of
@@ -136,6 +139,50 @@ void settle_creases(const TriMesh& m, const std::vector<RimEdge>& c, double eps,
 	}
 }
 
+// A jagged rim across a faceted curve (a cylinder's or a cone's narrow facets) may cross a facet along a
+// single edge between two stretches of several: such an edge joins the one beside it whose plane holds
+// both its ends within kNearlyOn of its length (the facets turn by a few degrees), so that the facets
+// about it meet as that stretch's plane continued. (A rim of single edges, as on a finely faceted
+// sphere, keeps them: it is faired.) Stretches that end up side by side on one plane become one;
+// planes no stretch keeps are dropped.
+void absorb_single_edges(const TriMesh& m, const std::vector<RimEdge>& c, std::vector<Run>& runs, std::vector<Plane>& planes)
+{
+	for (size_t r = 0; r < runs.size();) {
+		const size_t R = runs.size(), before = (r + R - 1) % R, after = (r + 1) % R;
+		if (R <= 2 || runs[r].count != 1 || runs[before].count < 2 || runs[after].count < 2) {
+			++r;
+			continue;
+		}
+		const RimEdge& e     = c[runs[r].first % c.size()];
+		const double   tol   = kNearlyOn * (m.V[e.to] - m.V[e.from]).norm();
+		const auto     holds = [&](const Run& o) {
+            return std::abs(planes[o.plane].eval(m.V[e.from])) <= tol && std::abs(planes[o.plane].eval(m.V[e.to])) <= tol;
+		};
+		const bool to_before = holds(runs[before]);
+		if (!to_before && !holds(runs[after])) {
+			++r;
+			continue;
+		}
+		if (to_before) ++runs[before].count;
+		else runs[after].first = runs[r].first, ++runs[after].count;
+		std::vector<size_t> gone{r};
+		if (runs[before].plane == runs[after].plane) {   // one stretch now, through the edge
+			runs[before].count += runs[after].count;
+			gone.push_back(after);
+		}
+		std::sort(gone.rbegin(), gone.rend());
+		for (size_t g : gone) runs.erase(runs.begin() + (long) g);
+		r = 0;
+	}
+	std::vector<int>   id(planes.size(), -1);
+	std::vector<Plane> kept;
+	for (Run& run : runs) {
+		if (id[run.plane] < 0) id[run.plane] = (int) kept.size(), kept.push_back(planes[run.plane]);
+		run.plane = id[run.plane];
+	}
+	planes = std::move(kept);
+}
+
 // The cycle (rotated to start where a stretch starts) cut into stretches on one plane each, and the
 // distinct planes; false if a face has no normal or a stretch is a single edge.
 bool stretches(const TriMesh& m, std::vector<RimEdge>& c, double eps, std::vector<Run>& runs, std::vector<Plane>& planes)
@@ -162,6 +209,7 @@ bool stretches(const TriMesh& m, std::vector<RimEdge>& c, double eps, std::vecto
 		if (p == (int) planes.size()) planes.push_back(own[i]);
 		runs.push_back({i, 1, p});
 	}
+	absorb_single_edges(m, c, runs, planes);
 	if (!std::all_of(runs.begin(), runs.end(), [](const Run& r) { return r.count >= 2; })) return false;
 	settle_creases(m, c, eps, runs, planes);
 	return true;
