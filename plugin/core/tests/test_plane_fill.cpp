@@ -81,13 +81,15 @@ TEST_CASE("holes across a box's corner, edge, a plate's rim and a slab's edge cl
 	    {Vec3(0, 0, 0), Vec3(4, 4, 0.5), Vec3(4, 2, 0.25), 0.7, 0},  // top, rim and bottom of a plate
 	    {Vec3(0, 0, 0), Vec3(2, 0.5, 2), Vec3(2, 0.25, 2), 0.6, 2},  // a slab's short edge, both its corners
 	};
-	for (const Case& c : cases)
+	for (const Case& c : cases) {
+		std::vector<std::vector<Tri>> patches;   // per pose
 		for (const Eigen::Matrix3d& pose : {Eigen::Matrix3d(Eigen::Matrix3d::Identity()), R}) {
 			const TriMesh box  = turned(shapes::subdivided(shapes::subdivided(shapes::subdivided(shapes::box(c.lo, c.hi)))), pose);
 			const TriMesh open = punched(box, pose * c.at, c.r);
 			REQUIRE(open_edges(open) > 0);
 			const std::optional<FilledHoles> f = fill_holes(open);
 			REQUIRE(f);
+			patches.emplace_back(f->mesh.F.begin() + (long) f->first_patch, f->mesh.F.end());
 			CHECK(f->holes == 1);
 			CHECK(f->planar == 1);
 			CHECK(f->faired == 0);
@@ -97,6 +99,9 @@ TEST_CASE("holes across a box's corner, edge, a plate's rim and a slab's edge cl
 			CHECK(off_box(*f, pose, c.lo, c.hi) < 1e-9);
 			CHECK(std::abs(volume(f->mesh) - volume(box)) < 1e-9 * volume(box));
 		}
+		// the same triangles in both poses: the grid's cocircular corners tie alike
+		CHECK(patches[0] == patches[1]);
+	}
 }
 
 TEST_CASE("a hole on a curved surface, or whose planes meet no corner near it, is no plane patch")
@@ -159,10 +164,12 @@ TEST_CASE("a rim that touches the crease it spans, and two openings that meet at
 		const bool a = c.x() > 0.5 && c.x() < 1 && c.y() > 0.5 && c.y() < 1, b = c.x() > 1 && c.x() < 1.5 && c.y() > 1 && c.y() < 1.5;
 		if (c.z() < 2 - 1e-9 || !(a || b)) pinch.F.push_back(t);
 	}
-	for (const TriMesh* open : {&touch, &pinch})
+	for (const TriMesh* open : {&touch, &pinch}) {
+		std::vector<std::vector<Tri>> patches;   // per pose
 		for (const Eigen::Matrix3d& pose : {Eigen::Matrix3d(Eigen::Matrix3d::Identity()), R}) {
 			const std::optional<FilledHoles> f = fill_holes(turned(*open, pose));
 			REQUIRE(f);
+			patches.emplace_back(f->mesh.F.begin() + (long) f->first_patch, f->mesh.F.end());
 			CHECK(f->holes == 1);
 			CHECK(f->planar == 1);
 			CHECK(f->faired == 0);
@@ -171,4 +178,6 @@ TEST_CASE("a rim that touches the crease it spans, and two openings that meet at
 			CHECK(off_box(*f, pose, lo, hi) < 1e-9);
 			CHECK(std::abs(volume(f->mesh) - volume(cube)) < 1e-9 * volume(cube));
 		}
+		CHECK(patches[0] == patches[1]);
+	}
 }

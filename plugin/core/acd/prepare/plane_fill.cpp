@@ -289,14 +289,45 @@ bool polygons(const std::vector<RimEdge>& c, const std::vector<Run>& runs, const
 	return true;
 }
 
+// The polygon's points in the plane's own 2D frame, the same in any pose: from its first point, along its
+// first edge, snapped to a grid of a power of two (about 1e-8 of its extent). Points on a regular grid
+// (cocircular quadruples, which the Delaunay triangulation settles by their coordinates) then tie alike
+// in every pose, and the patch is triangulated alike. (Only the triangulation's connectivity is kept:
+// the patch's vertices stay where they are.)
+std::vector<Eigen::Vector2d> plane_coordinates(const std::vector<Vec3>& at, const Plane& pl, bool snap = true)
+{
+	Vec3 e1 = pl.n.unitOrthogonal();
+	for (size_t i = 1; i < at.size(); ++i) {
+		const Vec3 d = at[i] - at[0] - pl.n * pl.n.dot(at[i] - at[0]);
+		if (d.norm() > 0) {
+			e1 = d.normalized();
+			break;
+		}
+	}
+	const Vec3                   e2 = pl.n.cross(e1);
+	std::vector<Eigen::Vector2d> q;
+	double                       extent = 0;
+	for (const Vec3& p : at) {
+		q.emplace_back((p - at[0]).dot(e1), (p - at[0]).dot(e2));
+		extent = std::max(extent, q.back().cwiseAbs().maxCoeff());
+	}
+	// The grid is shifted by a share of a step that no binary fraction comes near: coordinates written
+	// with few bits (float exports, round CAD sizes) fall on halves of a power-of-two grid, where the
+	// rounding noise of a pose would decide which way they snap.
+	const double step = std::ldexp(1.0, std::ilogb(std::max(extent, 1e-300)) - 26), shift = 0.3183098861837907;
+	if (snap)
+		for (Eigen::Vector2d& p : q) p = ((p / step).array() + shift).round().matrix() * step;
+	return q;
+}
+
 // The triangles of a simple polygon on plane pl that runs clockwise about pl.n (as a rim runs about
 // its hole), each counterclockwise about pl.n; false if it is not such a polygon.
-bool triangulate(const std::vector<int>& poly, const std::vector<Vec3>& at, const Plane& pl, std::vector<Tri>& out)
+bool triangulate(const std::vector<int>& poly, const std::vector<Vec3>& at, const Plane& pl, std::vector<Tri>& out,
+                 bool snap = true)
 {
-	const Vec3 e1 = pl.n.unitOrthogonal(), e2 = pl.n.cross(e1);
 	std::vector<K::Point_2> pts;
 	double area = 0;
-	for (const Vec3& p : at) pts.emplace_back(p.dot(e1), p.dot(e2));
+	for (const Eigen::Vector2d& q : plane_coordinates(at, pl, snap)) pts.emplace_back(q.x(), q.y());
 	for (size_t i = 0; i < pts.size(); ++i) {
 		const K::Point_2 &a = pts[i], &b = pts[(i + 1) % pts.size()];
 		area += a.x() * b.y() - b.x() * a.y();
@@ -313,7 +344,8 @@ bool triangulate(const std::vector<int>& poly, const std::vector<Vec3>& at, cons
 	}
 	// A vertex may repeat where the polygon touches itself (split_creases); two at one point may not.
 	const size_t distinct = std::set<int>(poly.begin(), poly.end()).size();
-	if (cdt.number_of_vertices() != distinct) return false;
+	if (cdt.number_of_vertices() != distinct)   // two points within a grid step (a corner at a rim vertex)
+		return snap && triangulate(poly, at, pl, out, false);
 	for (CDT::All_faces_iterator f = cdt.all_faces_begin(); f != cdt.all_faces_end(); ++f) f->info() = -1;
 	// Depth: constrained edges crossed from outside, flooded one depth at a time.
 	std::vector<CDT::Face_handle> seeds{cdt.infinite_face()};
