@@ -246,6 +246,9 @@ struct Polygons
 	std::map<std::array<int, 3>, int> corner_id;   // the planes that meet there, sorted
 };
 
+// Where a patch's vertex id lies: the surface's vertex v (>= 0), or corner -1 - v.
+const Vec3& point_of(const TriMesh& m, const std::vector<Vec3>& corners, int v) { return v >= 0 ? m.V[v] : corners[-1 - v]; }
+
 // A stretch's rim vertices appended to its plane's polygon: each edge's start, then the last one's end.
 void append_stretch(const std::vector<RimEdge>& c, const Run& run, std::vector<int>& poly)
 {
@@ -321,7 +324,9 @@ std::vector<Eigen::Vector2d> plane_coordinates(const std::vector<Vec3>& at, cons
 }
 
 // The triangles of a simple polygon on plane pl that runs clockwise about pl.n (as a rim runs about
-// its hole), each counterclockwise about pl.n; false if it is not such a polygon.
+// its hole), each counterclockwise about pl.n; false if it is not such a polygon. The polygon may touch
+// itself at a vertex it lists twice (split_creases). `snap`: in plane_coordinates' snapped frame, or,
+// where two of its points fall within one grid step, unsnapped.
 bool triangulate(const std::vector<int>& poly, const std::vector<Vec3>& at, const Plane& pl, std::vector<Tri>& out,
                  bool snap = true)
 {
@@ -397,7 +402,7 @@ void split_creases(const TriMesh& m, const std::vector<RimEdge>& c, const std::v
 {
 	std::set<std::pair<int, int>> rim;
 	for (const RimEdge& e : c) rim.insert(std::minmax(e.from, e.to));
-	const auto at = [&](int v) { return v >= 0 ? m.V[v] : pg.corners[-1 - v]; };
+	const auto at = [&](int v) { return point_of(m, pg.corners, v); };
 	for (size_t p = 0; p < pg.of.size(); ++p) {
 		const std::vector<int>& poly = pg.of[p];
 		std::vector<int>        out;
@@ -431,7 +436,7 @@ std::optional<PlanePatch> patch_of(const TriMesh& m, const std::vector<RimEdge>&
 	out.corners = pg.corners;
 	for (size_t p = 0; p < planes.size(); ++p) {
 		std::vector<Vec3> at;
-		for (int v : pg.of[p]) at.push_back(v >= 0 ? m.V[v] : pg.corners[-1 - v]);
+		for (int v : pg.of[p]) at.push_back(point_of(m, pg.corners, v));
 		if (!triangulate(pg.of[p], at, planes[p], out.faces)) return std::nullopt;
 	}
 	if (!closes(c, out.faces)) return std::nullopt;
@@ -494,7 +499,7 @@ std::optional<PlanePatch> corner_tree(const TriMesh& m, const std::vector<RimEdg
 		std::optional<PlanePatch> p = ok ? patch_of(m, c, planes, pg, eps) : std::nullopt;
 		if (!p) continue;
 		double area = 0;
-		const auto at = [&](int v) { return v >= 0 ? m.V[v] : p->corners[-1 - v]; };
+		const auto at = [&](int v) { return point_of(m, p->corners, v); };
 		for (const Tri& f : p->faces) area += (at(f[1]) - at(f[0])).cross(at(f[2]) - at(f[0])).norm();
 		if (!best || area < least) best = std::move(p), least = area;
 	}
